@@ -1,0 +1,31 @@
+#pragma once
+// Point cloud and label types shared by every stage.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace lccp {
+
+// Per-point attributes as parallel arrays (structure of arrays).
+// Missing measurements are NaN points; they keep their place so that an
+// organized (image-shaped) cloud stays organized.
+struct PointCloud {
+  std::uint32_t width = 0;   // points per row
+  std::uint32_t height = 1;  // rows; > 1 means organized
+  std::vector<Eigen::Vector3f> points;   // metres, sensor frame; NaN = no data
+  std::vector<std::uint32_t> colors;     // packed 0x00RRGGBB; empty if the cloud has none
+  std::vector<Eigen::Vector3f> normals;  // unit normals; empty if the cloud has none
+
+  std::size_t size() const { return points.size(); }
+  bool organized() const { return height > 1; }
+  bool has_colors() const { return !colors.empty(); }
+  bool has_normals() const { return !normals.empty(); }
+};
+
+// One label per point, in the cloud's point order. 0 = no label (non-finite point).
+using Labels = std::vector<std::uint32_t>;
+
+inline bool is_finite(const Eigen::Vector3f& p) { return p.allFinite(); }
+
+}  // namespace lccp

@@ -1,0 +1,38 @@
+#pragma once
+// Stage 4: edge classification, paper Appendix A.2, eq. (1)-(5).
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lccp/config.hpp"
+#include "lccp/core/adjacency.hpp"
+
+namespace lccp {
+
+struct Patch {
+  Eigen::Vector3f centroid;
+  Eigen::Vector3f normal;  // unit
+};
+
+// beta = angle between the normals, degrees.
+float normal_angle_deg(const Patch& p1, const Patch& p2);
+// Eq. (3): theta_thresh(beta) = theta_max / (1 + exp(-a (beta - beta_off))), degrees.
+float sanity_threshold_deg(float beta_deg, const ConvexityConfig& config);
+// Eq. (2): angle between d = x1 - x2 and s = n1 x n2, folded to [0, 90] degrees;
+// 90 when s vanishes (parallel normals: no singular configuration).
+float sanity_angle_deg(const Patch& p1, const Patch& p2);
+// Eq. (1): (n1 - n2) . d_hat > 0 or beta < beta_thresh.
+bool convexity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config);
+// Eq. (4): theta > theta_thresh(beta).
+bool sanity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config);
+// Eq. (5): CC and (SC if enabled).
+bool is_convex(const Patch& p1, const Patch& p2, const ConvexityConfig& config);
+
+// One flag per edge (1 = convex), computed in parallel without locks.
+std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges,
+                                         const std::vector<Eigen::Vector3f>& centroids,
+                                         const std::vector<Eigen::Vector3f>& normals,
+                                         const ConvexityConfig& config);
+
+}  // namespace lccp

@@ -1,0 +1,47 @@
+#pragma once
+// The whole method on one cloud: the pipeline reads like the paper, one call per stage.
+#include <cstdint>
+
+#include "lccp/cloud.hpp"
+#include "lccp/config.hpp"
+
+namespace lccp {
+
+struct StageTimes {
+  double voxelize_ms = 0;
+  double normals_ms = 0;
+  double seeds_ms = 0;
+  double growth_ms = 0;
+  double adjacency_ms = 0;
+  double classify_ms = 0;
+  double label_ms = 0;   // convex components
+  double filter_ms = 0;  // noise filter, relabelling and per-point labels
+  double total_ms() const {
+    return voxelize_ms + normals_ms + seeds_ms + growth_ms + adjacency_ms + classify_ms + label_ms + filter_ms;
+  }
+};
+
+struct SegmentationResult {
+  Labels labels;  // per point: 1..segment_count, 0 for non-finite points
+  std::uint32_t voxel_count = 0;
+  std::uint32_t supervoxel_count = 0;
+  std::uint32_t segment_count = 0;
+  StageTimes times;
+};
+
+class LccpSegmenter {
+ public:
+  // Throws lccp::Error if the config is out of range.
+  explicit LccpSegmenter(const LccpConfig& config);
+
+  // Labels every finite point; deterministic for a given cloud and config,
+  // whatever the thread count. Throws lccp::Error for a cloud without finite points.
+  SegmentationResult segment(const PointCloud& cloud) const;
+
+  const LccpConfig& config() const { return config_; }
+
+ private:
+  LccpConfig config_;
+};
+
+}  // namespace lccp

@@ -1,0 +1,18 @@
+#pragma once
+// Stage 2: one unit normal per voxel.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lccp/core/voxel_grid.hpp"
+
+namespace lccp {
+
+// PCA over the voxel centroids of the 2-ring neighbourhood (each centroid
+// weighted by the number of paths of length <= 2 reaching it, as VCCS does),
+// flipped toward the sensor at the origin. Voxels whose neighbourhood is
+// degenerate get the direction toward the sensor. If the grid carries mean
+// point normals (merged multi-view clouds, paper Fig. 3) those are used instead.
+std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid);
+
+}  // namespace lccp

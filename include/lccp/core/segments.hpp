@@ -1,0 +1,26 @@
+#pragma once
+// Stages 5-6: convex connected components (A.3) and the noise filter (A.4).
+#include <cstdint>
+#include <vector>
+
+#include "lccp/core/adjacency.hpp"
+
+namespace lccp {
+
+// Segment id per supervoxel: components over the edges flagged convex,
+// computed with the concurrent union-find. Ids are the smallest supervoxel
+// index of each component (not dense).
+std::vector<std::uint32_t> convex_components(std::size_t supervoxel_count, const std::vector<Edge>& edges,
+                                             const std::vector<std::uint8_t>& convex);
+
+// Merges every segment of <= n_filter supervoxels into its largest neighbouring
+// segment (ties: smaller id), repeatedly, until no such segment has a neighbour.
+// Small segments are visited smallest first, then by id, so the result is deterministic.
+void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, const std::vector<Edge>& edges,
+                          std::uint32_t n_filter);
+
+// Renumbers segments densely 1..K: largest segment (in supervoxels) first,
+// ties by smallest member supervoxel. Returns K.
+std::uint32_t relabel_by_size(std::vector<std::uint32_t>& segment_of_supervoxel);
+
+}  // namespace lccp

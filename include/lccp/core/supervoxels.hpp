@@ -1,0 +1,38 @@
+#pragma once
+// Stage 3: VCCS supervoxels, seeded on a grid and grown over voxel adjacency.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lccp/config.hpp"
+#include "lccp/core/voxel_grid.hpp"
+
+namespace lccp {
+
+// Voxels that seed a supervoxel: per occupied cell of the seed grid (spacing
+// seed_size_m), the voxel nearest the cell centre, kept if enough voxels lie
+// within seed_size_m / 2 of it. Ascending voxel ids.
+std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelConfig& config,
+                                        float voxel_size_m);
+
+struct Supervoxels {
+  std::vector<std::uint32_t> supervoxel_of_voxel;  // every voxel has one
+  std::vector<Eigen::Vector3f> centroids;          // mean of member voxel centroids (m)
+  std::vector<Eigen::Vector3f> normals;            // normalized sum of member voxel normals
+  std::vector<Eigen::Vector3f> colors;             // mean member voxel colour
+  std::vector<std::uint32_t> voxel_counts;
+
+  std::size_t size() const { return centroids.size(); }
+};
+
+// Flow-constrained growth: int(1.8 s / v) - 1 synchronous passes in which every
+// voxel joins the neighbouring supervoxel with the smallest distance
+// D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s, then centroids are
+// recomputed. Voxels no supervoxel reached join their nearest grown neighbour;
+// components without any seed become supervoxels of their own.
+Supervoxels grow_supervoxels(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& voxel_normals,
+                             const std::vector<std::uint32_t>& seeds, const SupervoxelConfig& config,
+                             float voxel_size_m);
+
+}  // namespace lccp

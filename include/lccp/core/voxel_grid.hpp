@@ -1,0 +1,46 @@
+#pragma once
+// Stage 1: voxelization with a 26-neighbourhood (paper A.1, VCCS [15]).
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lccp/cloud.hpp"
+#include "lccp/config.hpp"
+
+namespace lccp {
+
+inline constexpr std::uint32_t kNoVoxel = 0xffffffffu;
+
+// Compressed sparse rows: the items of row i are items[offsets[i] .. offsets[i+1]).
+struct CompressedRows {
+  std::vector<std::uint32_t> offsets;
+  std::vector<std::uint32_t> items;
+
+  std::size_t rows() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  const std::uint32_t* begin(std::size_t row) const { return items.data() + offsets[row]; }
+  const std::uint32_t* end(std::size_t row) const { return items.data() + offsets[row + 1]; }
+  std::uint32_t count(std::size_t row) const { return offsets[row + 1] - offsets[row]; }
+};
+
+// Occupied voxels in ascending order of their integer cell key, which makes
+// voxel ids independent of thread count and point order.
+struct VoxelGrid {
+  std::vector<Eigen::Vector3f> centroids;    // mean of member points (m)
+  std::vector<Eigen::Vector3f> colors;       // mean colour, 0..255 per channel (0 if none)
+  std::vector<Eigen::Vector3f> mean_normals; // normalized mean of given point normals; empty if none
+  CompressedRows points;                     // member point indices per voxel, ascending
+  CompressedRows neighbors;                  // 26-neighbourhood, self excluded, ascending
+  std::vector<std::uint32_t> voxel_of_point; // per input point; kNoVoxel if not finite
+
+  std::size_t size() const { return centroids.size(); }
+};
+
+// Throws lccp::Error when the cloud has no finite point or spans more cells
+// than the integer keys can hold.
+VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config);
+
+// The binning actually used for this cloud (resolves Binning::automatic).
+Binning effective_binning(const PointCloud& cloud, Binning requested);
+
+}  // namespace lccp
