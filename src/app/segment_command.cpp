@@ -1,0 +1,69 @@
+// lccp segment IN -o OUT.pcd [--png OUT.png]: one cloud in, labelled cloud out.
+#include <cstdio>
+#include <filesystem>
+
+#include "commands.hpp"
+#include "lccp/core/lccp.hpp"
+#include "lccp/error.hpp"
+#include "lccp/io/cloud_io.hpp"
+
+namespace lccp::app {
+namespace {
+
+struct SegmentOptions {
+  std::string input;
+  std::string output;
+  std::string png;
+  ConfigOptions config;
+};
+
+void print_summary(const PointCloud& cloud, const SegmentationResult& r) {
+  std::size_t finite = 0;
+  for (const auto& p : cloud.points) finite += is_finite(p);
+  const StageTimes& t = r.times;
+  std::printf(
+      "points %zu (finite %zu), voxels %u, supervoxels %u, segments %u | ms: voxelize %.1f normals %.1f seeds %.1f "
+      "growth %.1f adjacency %.1f classify %.1f label %.1f filter %.1f total %.1f\n",
+      cloud.size(), finite, r.voxel_count, r.supervoxel_count, r.segment_count, t.voxelize_ms, t.normals_ms,
+      t.seeds_ms, t.growth_ms, t.adjacency_ms, t.classify_ms, t.label_ms, t.filter_ms, t.total_ms());
+}
+
+// Writes every requested output; if one fails, removes the ones already written.
+void write_outputs(const SegmentOptions& options, const PointCloud& cloud, const Labels& labels) {
+  std::vector<std::filesystem::path> written;
+  try {
+    write_labelled_pcd(options.output, cloud, labels);
+    written.push_back(options.output);
+    if (!options.png.empty()) write_label_png(options.png, cloud, labels);
+  } catch (...) {
+    for (const auto& path : written) std::filesystem::remove(path);
+    throw;
+  }
+}
+
+int run_segment(const SegmentOptions& options) {
+  const LccpSegmenter segmenter(options.config.resolve());
+  const PointCloud cloud = read_cloud(options.input).cloud;
+  if (!options.png.empty() && !cloud.organized()) {
+    throw Error(options.input + ": --png needs an organized (image-shaped) cloud");
+  }
+  const SegmentationResult result = segmenter.segment(cloud);
+  write_outputs(options, cloud, result.labels);
+  print_summary(cloud, result);
+  return 0;
+}
+
+}  // namespace
+
+Subcommand add_segment_command(CLI::App& cli) {
+  auto options = std::make_shared<SegmentOptions>();
+  CLI::App* command = cli.add_subcommand("segment", "segment one point cloud (.pcd or .ply) into objects and parts");
+  command->add_option("input", options->input, "input cloud")->required();
+  command->add_option("-o,--output", options->output, "labelled cloud to write (.pcd with a uint32 label field)")
+      ->required();
+  command->add_option("--png", options->png, "also write a colour image of the labels (organized clouds)");
+  options->config.add_to(*command);
+  return {command, [options] { return run_segment(*options); }};
+}
+
+}  // namespace lccp::app

@@ -1,0 +1,69 @@
+#include "lccp/core/convexity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+
+namespace lccp {
+namespace {
+
+constexpr float kDegreesPerRadian = 180.0f / std::numbers::pi_v<float>;
+
+float angle_deg(float cosine) { return std::acos(std::clamp(cosine, -1.0f, 1.0f)) * kDegreesPerRadian; }
+
+// d_hat = (x1 - x2) / |x1 - x2|; zero when the centroids coincide.
+Eigen::Vector3f centroid_direction(const Patch& p1, const Patch& p2) {
+  const Eigen::Vector3f d = p1.centroid - p2.centroid;
+  const float length = d.norm();
+  return length > 0.0f ? Eigen::Vector3f(d / length) : Eigen::Vector3f::Zero();
+}
+
+}  // namespace
+
+float normal_angle_deg(const Patch& p1, const Patch& p2) { return angle_deg(p1.normal.dot(p2.normal)); }
+
+float sanity_threshold_deg(float beta_deg, const ConvexityConfig& config) {
+  // Eq. (3)
+  return config.theta_max_deg / (1.0f + std::exp(-config.sigmoid_slope_per_deg * (beta_deg - config.beta_off_deg)));
+}
+
+float sanity_angle_deg(const Patch& p1, const Patch& p2) {
+  // Eq. (2): theta = min(angle(d, s), 180 - angle(d, s)) with s = n1 x n2.
+  const Eigen::Vector3f s = p1.normal.cross(p2.normal);
+  const Eigen::Vector3f d_hat = centroid_direction(p1, p2);
+  const float s_length = s.norm();
+  if (s_length < 1e-6f || d_hat.isZero()) return 90.0f;  // parallel normals: no intersection line
+  return angle_deg(std::abs(d_hat.dot(s / s_length)));
+}
+
+bool convexity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config) {
+  // Eq. (1): (n1 - n2) . d_hat > 0, or beta < beta_thresh.
+  const bool convex = (p1.normal - p2.normal).dot(centroid_direction(p1, p2)) > 0.0f;
+  return convex || normal_angle_deg(p1, p2) < config.beta_thresh_deg;
+}
+
+bool sanity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config) {
+  // Eq. (4): theta > theta_thresh(beta).
+  return sanity_angle_deg(p1, p2) > sanity_threshold_deg(normal_angle_deg(p1, p2), config);
+}
+
+bool is_convex(const Patch& p1, const Patch& p2, const ConvexityConfig& config) {
+  // Eq. (5)
+  return convexity_criterion(p1, p2, config) && (!config.sanity_criterion || sanity_criterion(p1, p2, config));
+}
+
+std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges, const std::vector<Eigen::Vector3f>& centroids,
+                                         const std::vector<Eigen::Vector3f>& normals, const ConvexityConfig& config) {
+  std::vector<std::uint8_t> convex(edges.size());
+  tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {
+    const Patch p1{centroids[edges[e].a], normals[edges[e].a]};
+    const Patch p2{centroids[edges[e].b], normals[edges[e].b]};
+    convex[e] = is_convex(p1, p2, config);
+  });
+  return convex;
+}
+
+}  // namespace lccp

@@ -1,0 +1,290 @@
+#include "lccp/core/supervoxels.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <numbers>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "cell_keys.hpp"
+
+namespace lccp {
+namespace {
+
+using detail::Cell;
+using detail::KeyedIndex;
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr float kUnreached = std::numeric_limits<float>::infinity();
+
+// ---- seeding ------------------------------------------------------------------
+
+// Voxels grouped by the seed-grid cell their centroid falls in, sorted by cell key.
+struct SeedCells {
+  std::vector<std::uint64_t> keys;  // one per occupied cell, ascending
+  std::vector<Cell> cells;
+  CompressedRows voxels;            // member voxels per cell, ascending
+};
+
+SeedCells group_by_seed_cell(const std::vector<Cell>& cell_of_voxel, const detail::CellKeys& keys) {
+  SeedCells groups;
+  std::vector<KeyedIndex> items(cell_of_voxel.size());
+  for (std::size_t v = 0; v < cell_of_voxel.size(); ++v) {
+    items[v] = {keys.key(cell_of_voxel[v]), static_cast<std::uint32_t>(v)};
+  }
+  detail::radix_sort(items, keys.key_bits());
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i == 0 || items[i].key != items[i - 1].key) {
+      groups.keys.push_back(items[i].key);
+      groups.cells.push_back(cell_of_voxel[items[i].index]);
+      groups.voxels.offsets.push_back(static_cast<std::uint32_t>(i));
+    }
+    groups.voxels.items.push_back(items[i].index);
+  }
+  groups.voxels.offsets.push_back(static_cast<std::uint32_t>(items.size()));
+  return groups;
+}
+
+// The member voxel nearest the centre of seed cell `c` (ties: smaller id).
+std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& groups, std::size_t c,
+                                     float seed_size) {
+  const Eigen::Vector3f centre = (groups.cells[c].cast<float>() + 0.5f) * seed_size;
+  std::uint32_t best = kNone;
+  float best_distance = std::numeric_limits<float>::infinity();
+  for (const std::uint32_t* v = groups.voxels.begin(c); v != groups.voxels.end(c); ++v) {
+    const float d = (grid.centroids[*v] - centre).squaredNorm();
+    if (d < best_distance) {
+      best_distance = d;
+      best = *v;
+    }
+  }
+  return best;
+}
+
+// Whether more than `enough` voxels lie within `radius` of voxel `seed`; the
+// ball lies within the 27 seed cells around it.
+bool has_voxels_within(const VoxelGrid& grid, const SeedCells& groups, const detail::CellKeys& keys,
+                       std::size_t c, std::uint32_t seed, float radius, float enough) {
+  float count = 0;
+  const auto count_in_cell = [&](std::size_t cell) {
+    for (const std::uint32_t* v = groups.voxels.begin(cell); v != groups.voxels.end(cell); ++v) {
+      count += (grid.centroids[*v] - grid.centroids[seed]).squaredNorm() <= radius * radius;
+    }
+    return count > enough;
+  };
+  if (count_in_cell(c)) return true;  // the seed's own cell first: usually enough
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        const std::uint64_t key = groups.keys[c] + keys.offset(dx, dy, dz);
+        const auto it = std::lower_bound(groups.keys.begin(), groups.keys.end(), key);
+        if ((dx || dy || dz) && it != groups.keys.end() && *it == key && count_in_cell(it - groups.keys.begin())) {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+// ---- growth -------------------------------------------------------------------
+
+struct Centre {
+  Eigen::Vector3f xyz = Eigen::Vector3f::Zero();
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+  Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
+};
+
+class Grower {
+ public:
+  Grower(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& normals, const SupervoxelConfig& config)
+      : grid_(grid), normals_(normals), config_(config), owner_(grid.size(), kNone) {}
+
+  void plant(const std::vector<std::uint32_t>& seeds) {
+    centres_.resize(seeds.size());
+    for (std::uint32_t k = 0; k < seeds.size(); ++k) {
+      owner_[seeds[k]] = k;
+      centres_[k] = {grid_.centroids[seeds[k]], normals_[seeds[k]], grid_.colors[seeds[k]]};
+    }
+  }
+
+  // One synchronous pass: every voxel joins whichever supervoxel among its own
+  // and its neighbours' is nearest by the VCCS distance; then centres move.
+  void grow_one_ring() {
+    std::vector<std::uint32_t> next(owner_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
+      for (std::size_t v = range.begin(); v < range.end(); ++v) next[v] = nearest_candidate(v, owner_[v]);
+    });
+    owner_.swap(next);
+    update_centres();
+  }
+
+  // Voxels no supervoxel reached join their nearest neighbouring supervoxel,
+  // ring by ring, without moving the centres.
+  void absorb_unreached() {
+    for (bool changed = true; changed;) {
+      std::vector<std::uint32_t> next = owner_;
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          if (owner_[v] == kNone) next[v] = nearest_candidate(v, kNone);
+        }
+      });
+      changed = next != owner_;
+      owner_.swap(next);
+    }
+  }
+
+  // Connected groups of voxels that no seed could reach become supervoxels.
+  void seed_orphan_components() {
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
+      if (owner_[v] != kNone) continue;
+      const auto k = static_cast<std::uint32_t>(centres_.size());
+      centres_.push_back({});
+      owner_[v] = k;
+      stack.push_back(v);
+      while (!stack.empty()) {
+        const std::uint32_t u = stack.back();
+        stack.pop_back();
+        for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
+          if (owner_[*w] == kNone) {
+            owner_[*w] = k;
+            stack.push_back(*w);
+          }
+        }
+      }
+    }
+  }
+
+  Supervoxels finish();
+
+ private:
+  // D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s   (VCCS distance)
+  float distance(std::size_t v, const Centre& c) const {
+    const float colour = config_.color_weight > 0.0f ? (grid_.colors[v] - c.rgb).norm() / 255.0f : 0.0f;
+    return config_.normal_weight * (1.0f - std::abs(normals_[v].dot(c.normal))) + config_.color_weight * colour +
+           config_.spatial_weight * (grid_.centroids[v] - c.xyz).norm() / config_.seed_size_m;
+  }
+
+  // The supervoxel nearest to voxel v among its own and its neighbours'
+  // (ties: smaller id). Inside a supervoxel nothing can change, so distances
+  // are computed only on its boundary.
+  std::uint32_t nearest_candidate(std::size_t v, std::uint32_t current) const {
+    const std::uint32_t* first = grid_.neighbors.begin(v);
+    const std::uint32_t* last = grid_.neighbors.end(v);
+    const std::uint32_t* w = first;
+    while (w != last && (owner_[*w] == current || owner_[*w] == kNone)) ++w;
+    if (w == last) return current;
+    std::uint32_t best = current;
+    float best_distance = current == kNone ? kUnreached : distance(v, centres_[current]);
+    std::array<std::uint32_t, 26> tried;
+    std::size_t tried_count = 0;
+    for (; w != last; ++w) {
+      const std::uint32_t k = owner_[*w];
+      if (k == kNone || k == current || std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) {
+        continue;
+      }
+      tried[tried_count++] = k;
+      const float d = distance(v, centres_[k]);
+      if (d < best_distance || (d == best_distance && k < best)) {
+        best = k;
+        best_distance = d;
+      }
+    }
+    return best;
+  }
+
+  // Centres are the means of member voxel centroids and colours and the
+  // normalized sum of member normals, accumulated in voxel order.
+  std::vector<std::uint32_t> update_centres() {
+    std::vector<Centre> sums(centres_.size());
+    std::vector<std::uint32_t> counts(centres_.size(), 0);
+    for (std::size_t v = 0; v < owner_.size(); ++v) {
+      const std::uint32_t k = owner_[v];
+      if (k == kNone) continue;
+      sums[k].xyz += grid_.centroids[v];
+      sums[k].normal += normals_[v];
+      sums[k].rgb += grid_.colors[v];
+      ++counts[k];
+    }
+    for (std::size_t k = 0; k < centres_.size(); ++k) {
+      if (counts[k] == 0) continue;  // emptied: it cannot be a neighbour's owner any more
+      centres_[k].xyz = sums[k].xyz / static_cast<float>(counts[k]);
+      centres_[k].rgb = sums[k].rgb / static_cast<float>(counts[k]);
+      const float length = sums[k].normal.norm();
+      centres_[k].normal = length > 1e-6f ? Eigen::Vector3f(sums[k].normal / length) : -centres_[k].xyz.normalized();
+    }
+    return counts;
+  }
+
+  const VoxelGrid& grid_;
+  const std::vector<Eigen::Vector3f>& normals_;
+  const SupervoxelConfig& config_;
+  std::vector<std::uint32_t> owner_;
+  std::vector<Centre> centres_;
+};
+
+Supervoxels Grower::finish() {
+  const std::vector<std::uint32_t> counts = update_centres();
+  // Drop emptied supervoxels, keeping the order of the rest.
+  std::vector<std::uint32_t> new_id(centres_.size(), kNone);
+  Supervoxels result;
+  for (std::size_t k = 0; k < centres_.size(); ++k) {
+    if (counts[k] == 0) continue;
+    new_id[k] = static_cast<std::uint32_t>(result.size());
+    result.centroids.push_back(centres_[k].xyz);
+    result.normals.push_back(centres_[k].normal);
+    result.colors.push_back(centres_[k].rgb);
+    result.voxel_counts.push_back(counts[k]);
+  }
+  result.supervoxel_of_voxel.resize(owner_.size());
+  for (std::size_t v = 0; v < owner_.size(); ++v) result.supervoxel_of_voxel[v] = new_id[owner_[v]];
+  return result;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelConfig& config, float voxel_size_m) {
+  if (grid.size() == 0) return {};
+  const float seed_size = config.seed_size_m;
+  std::vector<Cell> cell_of_voxel(grid.size());
+  Cell min_cell = Cell::Constant(std::numeric_limits<int>::max());
+  Cell max_cell = Cell::Constant(std::numeric_limits<int>::min());
+  for (std::size_t v = 0; v < grid.size(); ++v) {
+    cell_of_voxel[v] = (grid.centroids[v] / seed_size).array().floor().cast<int>();
+    min_cell = min_cell.min(cell_of_voxel[v]);
+    max_cell = max_cell.max(cell_of_voxel[v]);
+  }
+  const detail::CellKeys keys(min_cell, max_cell);
+  const SeedCells groups = group_by_seed_cell(cell_of_voxel, keys);
+
+  // VCCS keeps a seed if more than 1/20 of a planar slice through the search
+  // ball is occupied: 0.05 pi r^2 / v^2 voxels with r = s / 2.
+  const float radius = 0.5f * seed_size;
+  const float min_voxels = 0.05f * radius * radius * std::numbers::pi_v<float> / (voxel_size_m * voxel_size_m);
+  std::vector<std::uint32_t> seeds(groups.keys.size(), kNone);
+  tbb::parallel_for(std::size_t{0}, groups.keys.size(), [&](std::size_t c) {
+    const std::uint32_t seed = nearest_to_cell_centre(grid, groups, c, seed_size);
+    if (has_voxels_within(grid, groups, keys, c, seed, radius, min_voxels)) seeds[c] = seed;
+  });
+  std::erase(seeds, kNone);
+  std::sort(seeds.begin(), seeds.end());
+  return seeds;
+}
+
+Supervoxels grow_supervoxels(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& voxel_normals,
+                             const std::vector<std::uint32_t>& seeds, const SupervoxelConfig& config,
+                             float voxel_size_m) {
+  Grower grower(grid, voxel_normals, config);
+  grower.plant(seeds);
+  // VCCS: int(1.8 s / v) - 1 passes, enough to cover the seed spacing.
+  const int passes = std::max(1, static_cast<int>(1.8f * config.seed_size_m / voxel_size_m) - 1);
+  for (int pass = 0; pass < passes; ++pass) grower.grow_one_ring();
+  grower.absorb_unreached();
+  grower.seed_orphan_components();
+  return grower.finish();
+}
+
+}  // namespace lccp

@@ -1,0 +1,224 @@
+#include "lccp/core/voxel_grid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "cell_keys.hpp"
+#include "lccp/error.hpp"
+
+namespace lccp {
+namespace {
+
+using detail::Cell;
+using detail::CellKeys;
+using detail::KeyedIndex;
+
+constexpr float kMaxCellCoordinate = 1 << 30;
+const Cell kInvalidCell = Cell::Constant(std::numeric_limits<int>::min());
+
+struct CellBounds {
+  Cell min = Cell::Constant(std::numeric_limits<int>::max());
+  Cell max = Cell::Constant(std::numeric_limits<int>::min());
+  std::size_t count = 0;
+  bool behind_sensor = false;  // a finite point at z <= 0 (camera binning impossible)
+
+  void add(const Cell& c) {
+    min = min.min(c);
+    max = max.max(c);
+    ++count;
+  }
+  void join(const CellBounds& other) {
+    min = min.min(other.min);
+    max = max.max(other.max);
+    count += other.count;
+    behind_sensor = behind_sensor || other.behind_sensor;
+  }
+};
+
+// The cell of a point: cubes of size v, or cells of size v in (x/z, y/z, ln z)
+// (PCL's single camera transform), which grow with depth.
+Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning) {
+  Eigen::Array3f q = p.array() * inverse_size;
+  if (binning == Binning::camera) {
+    const float inverse_z = inverse_size / p.z();
+    q = Eigen::Array3f(p.x() * inverse_z, p.y() * inverse_z, std::log(p.z()) * inverse_size);
+  }
+  if ((q.abs() > kMaxCellCoordinate).any()) throw Error("the cloud spans too far for its voxel size");
+  const Cell truncated = q.cast<int>();
+  return truncated - (q < truncated.cast<float>()).cast<int>();  // floor
+}
+
+// Cells of every point (kInvalidCell where non-finite) and their bounds, in one pass.
+CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binning, std::vector<Cell>& cells) {
+  cells.resize(cloud.size());
+  const float inverse_size = 1.0f / voxel_size;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, cloud.size()), CellBounds{},
+      [&](const auto& range, CellBounds bounds) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+          const Eigen::Vector3f& p = cloud.points[i];
+          cells[i] = kInvalidCell;
+          if (!is_finite(p)) continue;
+          if (binning == Binning::camera && !(p.z() > 0.0f)) {
+            bounds.behind_sensor = true;
+            continue;
+          }
+          cells[i] = cell_of(p, inverse_size, binning);
+          bounds.add(cells[i]);
+        }
+        return bounds;
+      },
+      [](CellBounds a, const CellBounds& b) {
+        a.join(b);
+        return a;
+      });
+}
+
+// Finite points sorted by cell key; points of one cell stay in index order.
+std::vector<KeyedIndex> sorted_point_keys(const std::vector<Cell>& cells, const CellKeys& keys,
+                                          std::size_t finite_count) {
+  std::vector<KeyedIndex> items;
+  items.reserve(finite_count);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (cells[i].x() != kInvalidCell.x()) items.push_back({keys.key(cells[i]), static_cast<std::uint32_t>(i)});
+  }
+  detail::radix_sort(items, keys.key_bits());
+  return items;
+}
+
+// Runs of equal keys become voxels: their keys and member point rows.
+void group_into_voxels(const std::vector<KeyedIndex>& items, std::vector<std::uint64_t>& voxel_keys,
+                       CompressedRows& points) {
+  points.items.resize(items.size());
+  points.offsets.clear();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i == 0 || items[i].key != items[i - 1].key) {
+      voxel_keys.push_back(items[i].key);
+      points.offsets.push_back(static_cast<std::uint32_t>(i));
+    }
+    points.items[i] = items[i].index;
+  }
+  points.offsets.push_back(static_cast<std::uint32_t>(items.size()));
+}
+
+Eigen::Vector3f unpack_rgb(std::uint32_t rgb) {
+  return Eigen::Vector3f(static_cast<float>((rgb >> 16) & 0xff), static_cast<float>((rgb >> 8) & 0xff),
+                         static_cast<float>(rgb & 0xff));
+}
+
+// Centroid, colour and (if given) normal of every voxel, summed in point order.
+void compute_voxel_means(const PointCloud& cloud, VoxelGrid& grid) {
+  const std::size_t n = grid.points.rows();
+  grid.centroids.resize(n);
+  grid.colors.assign(n, Eigen::Vector3f::Zero());
+  if (cloud.has_normals()) grid.mean_normals.resize(n);
+  grid.voxel_of_point.assign(cloud.size(), kNoVoxel);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
+    for (std::size_t v = range.begin(); v < range.end(); ++v) {
+      Eigen::Vector3d xyz = Eigen::Vector3d::Zero(), rgb = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+      for (const std::uint32_t* p = grid.points.begin(v); p != grid.points.end(v); ++p) {
+        grid.voxel_of_point[*p] = static_cast<std::uint32_t>(v);
+        xyz += cloud.points[*p].cast<double>();
+        if (cloud.has_colors()) rgb += unpack_rgb(cloud.colors[*p]).cast<double>();
+        if (cloud.has_normals() && cloud.normals[*p].allFinite()) normal += cloud.normals[*p].cast<double>();
+      }
+      const double count = grid.points.count(v);
+      grid.centroids[v] = (xyz / count).cast<float>();
+      grid.colors[v] = (rgb / count).cast<float>();
+      if (cloud.has_normals()) {
+        grid.mean_normals[v] = (normal.norm() > 0.0 ? Eigen::Vector3d(normal.normalized()) : Eigen::Vector3d::Zero()).cast<float>();
+      }
+    }
+  });
+}
+
+// 26-neighbourhood by walking the sorted keys: for each of the 9 (dx, dy) rows
+// a cursor only moves forward, since key + offset grows with key.
+void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys& keys, CompressedRows& neighbors) {
+  constexpr std::size_t kMaxNeighbors = 26;
+  const std::size_t n = voxel_keys.size();
+  const auto slots = std::make_unique_for_overwrite<std::uint32_t[]>(n * kMaxNeighbors);
+  std::vector<std::uint32_t> counts(n + 1, 0);
+  std::array<std::uint64_t, 9> row_offsets;
+  for (int dx = -1, r = 0; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) row_offsets[r++] = keys.offset(dx, dy, 0);
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& range) {
+    std::array<std::size_t, 9> cursor;
+    for (std::size_t r = 0; r < 9; ++r) {
+      const std::uint64_t first = voxel_keys[range.begin()] + row_offsets[r] - 1;
+      cursor[r] = std::lower_bound(voxel_keys.begin(), voxel_keys.end(), first) - voxel_keys.begin();
+    }
+    for (std::size_t v = range.begin(); v < range.end(); ++v) {
+      std::uint32_t* out = slots.get() + v * kMaxNeighbors;
+      std::uint32_t count = 0;
+      for (std::size_t r = 0; r < 9; ++r) {
+        const std::uint64_t centre = voxel_keys[v] + row_offsets[r];
+        while (cursor[r] < n && voxel_keys[cursor[r]] < centre - 1) ++cursor[r];
+        for (std::size_t u = cursor[r]; u < n && voxel_keys[u] <= centre + 1; ++u) {
+          if (u != v) out[count++] = static_cast<std::uint32_t>(u);
+        }
+      }
+      counts[v + 1] = count;
+    }
+  });
+  neighbors.offsets.resize(n + 1);
+  neighbors.offsets[0] = 0;
+  for (std::size_t v = 0; v < n; ++v) neighbors.offsets[v + 1] = neighbors.offsets[v] + counts[v + 1];
+  neighbors.items.resize(neighbors.offsets[n]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
+    for (std::size_t v = range.begin(); v < range.end(); ++v) {
+      std::copy_n(slots.get() + v * kMaxNeighbors, neighbors.count(v), neighbors.items.data() + neighbors.offsets[v]);
+    }
+  });
+}
+
+}  // namespace
+
+Binning effective_binning(const PointCloud& cloud, Binning requested) {
+  if (requested != Binning::automatic) return requested;
+  if (!cloud.organized()) return Binning::euclidean;
+  // The camera transform needs every point in front of the sensor.
+  const bool all_in_front = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, cloud.size()), true,
+      [&](const auto& range, bool ok) {
+        for (std::size_t i = range.begin(); ok && i < range.end(); ++i) {
+          ok = !is_finite(cloud.points[i]) || cloud.points[i].z() > 0.0f;
+        }
+        return ok;
+      },
+      [](bool a, bool b) { return a && b; });
+  return all_in_front ? Binning::camera : Binning::euclidean;
+}
+
+VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config) {
+  // Automatic binning tries the camera transform on organized clouds and falls
+  // back to cubes if a point lies behind the sensor.
+  Binning binning = config.binning == Binning::automatic && cloud.organized() ? Binning::camera : config.binning;
+  if (binning == Binning::automatic) binning = Binning::euclidean;
+  std::vector<Cell> cells;
+  CellBounds bounds = compute_cells(cloud, config.voxel_size_m, binning, cells);
+  if (bounds.behind_sensor && config.binning == Binning::camera) {
+    throw Error("camera binning needs every point at z > 0; use binning: euclidean");
+  }
+  if (bounds.behind_sensor) bounds = compute_cells(cloud, config.voxel_size_m, Binning::euclidean, cells);
+  if (bounds.count == 0) throw Error("the cloud has no finite points");
+  const CellKeys keys(bounds.min, bounds.max);
+  if (!keys.fits()) throw Error("the cloud spans too many voxels for its voxel size");
+
+  VoxelGrid grid;
+  std::vector<std::uint64_t> voxel_keys;
+  group_into_voxels(sorted_point_keys(cells, keys, bounds.count), voxel_keys, grid.points);
+  compute_voxel_means(cloud, grid);
+  find_neighbors(voxel_keys, keys, grid.neighbors);
+  return grid;
+}
+
+}  // namespace lccp

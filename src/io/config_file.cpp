@@ -1,0 +1,164 @@
+#include "lccp/io/config_file.hpp"
+
+#include <array>
+#include <charconv>
+#include <functional>
+#include <sstream>
+#include <string_view>
+
+#include <yaml-cpp/yaml.h>
+
+#include "lccp/error.hpp"
+
+namespace lccp {
+namespace {
+
+// One configurable parameter: its key (unit in the name), what it means, and
+// how to read and show it.
+struct Key {
+  std::string_view name;
+  std::string_view meaning;
+  std::function<void(LccpConfig&, const std::string&)> set;
+  std::function<std::string(const LccpConfig&)> get;
+};
+
+float parse_float(std::string_view key, const std::string& text) {
+  float value = 0.0f;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{} || end != text.data() + text.size()) {
+    throw Error("config key '" + std::string(key) + "': '" + text + "' is not a number");
+  }
+  return value;
+}
+
+std::uint32_t parse_count(std::string_view key, const std::string& text) {
+  std::uint32_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{} || end != text.data() + text.size()) {
+    throw Error("config key '" + std::string(key) + "': '" + text + "' is not a whole number >= 0");
+  }
+  return value;
+}
+
+bool parse_bool(std::string_view key, const std::string& text) {
+  if (text == "true" || text == "on" || text == "1") return true;
+  if (text == "false" || text == "off" || text == "0") return false;
+  throw Error("config key '" + std::string(key) + "': '" + text + "' is not true or false");
+}
+
+Binning parse_binning(std::string_view key, const std::string& text) {
+  if (text == "auto") return Binning::automatic;
+  if (text == "euclidean") return Binning::euclidean;
+  if (text == "camera") return Binning::camera;
+  throw Error("config key '" + std::string(key) + "': '" + text + "' is not auto, euclidean or camera");
+}
+
+std::string show(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::string show(Binning binning) {
+  switch (binning) {
+    case Binning::euclidean: return "euclidean";
+    case Binning::camera: return "camera";
+    case Binning::automatic: break;
+  }
+  return "auto";
+}
+
+// A float parameter; `field` is a generic lambda returning a reference to it.
+template <typename Field>
+Key float_key(std::string_view name, Field field, std::string_view meaning) {
+  return {name, meaning, [=](LccpConfig& c, const std::string& t) { field(c) = parse_float(name, t); },
+          [=](const LccpConfig& c) { return show(field(c)); }};
+}
+
+const std::array<Key, 12>& keys() {
+  static const std::array<Key, 12> table{
+      float_key("voxel_size_m", [](auto& c) -> auto& { return c.voxels.voxel_size_m; }, "voxel size v (metres)"),
+      Key{"binning", "voxel cells: auto (camera if organized), euclidean or camera",
+          [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
+          [](const LccpConfig& c) { return show(c.voxels.binning); }},
+      float_key("seed_size_m", [](auto& c) -> auto& { return c.supervoxels.seed_size_m; }, "supervoxel seed spacing s (metres)"),
+      float_key("spatial_weight", [](auto& c) -> auto& { return c.supervoxels.spatial_weight; }, "w_s, per seed spacing of distance"),
+      float_key("normal_weight", [](auto& c) -> auto& { return c.supervoxels.normal_weight; }, "w_n, on 1 - |n1.n2|"),
+      float_key("color_weight", [](auto& c) -> auto& { return c.supervoxels.color_weight; }, "w_c, on |rgb1 - rgb2| / 255"),
+      float_key("beta_thresh_deg", [](auto& c) -> auto& { return c.convexity.beta_thresh_deg; }, "CC bias beta_thresh (degrees), eq. 1"),
+      Key{"sanity_criterion", "apply SC, eq. 4 (true/false)",
+          [](LccpConfig& c, const std::string& t) { c.convexity.sanity_criterion = parse_bool("sanity_criterion", t); },
+          [](const LccpConfig& c) { return std::string(c.convexity.sanity_criterion ? "true" : "false"); }},
+      float_key("theta_max_deg", [](auto& c) -> auto& { return c.convexity.theta_max_deg; }, "SC sigmoid maximum (degrees), eq. 3"),
+      float_key("beta_off_deg", [](auto& c) -> auto& { return c.convexity.beta_off_deg; }, "SC sigmoid offset (degrees), eq. 3"),
+      float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
+      Key{"n_filter_supervoxels", "segments of <= this many supervoxels merge into a neighbour (A.4)",
+          [](LccpConfig& c, const std::string& t) {
+            c.filter.n_filter_supervoxels = parse_count("n_filter_supervoxels", t);
+          },
+          [](const LccpConfig& c) { return std::to_string(c.filter.n_filter_supervoxels); }},
+  };
+  return table;
+}
+
+std::string known_keys() {
+  std::string names;
+  for (const Key& key : keys()) names += (names.empty() ? "" : ", ") + std::string(key.name);
+  return names;
+}
+
+void set_key(LccpConfig& config, const std::string& name, const std::string& value) {
+  for (const Key& key : keys()) {
+    if (key.name == name) return key.set(config, value);
+  }
+  throw Error("unknown config key '" + name + "' (known: " + known_keys() + ")");
+}
+
+}  // namespace
+
+LccpConfig load_config(const std::filesystem::path& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path.string());
+  } catch (const YAML::BadFile&) {
+    throw Error(path.string() + ": cannot open config file");
+  } catch (const YAML::Exception& e) {
+    throw Error(path.string() + ": not valid YAML (line " + std::to_string(e.mark.line + 1) + ")");
+  }
+  LccpConfig config;
+  if (root.IsNull()) return config;
+  if (!root.IsMap()) throw Error(path.string() + ": expected a map of key: value");
+  for (const auto& entry : root) {
+    const std::string name = entry.first.as<std::string>();
+    if (!entry.second.IsScalar()) throw Error(path.string() + ": config key '" + name + "' needs a single value");
+    try {
+      set_key(config, name, entry.second.as<std::string>());
+    } catch (const Error& e) {
+      throw Error(path.string() + ": " + e.what());
+    }
+  }
+  try {
+    validate(config);
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
+  }
+  return config;
+}
+
+void apply_setting(LccpConfig& config, const std::string& key_equals_value) {
+  const auto equals = key_equals_value.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw Error("--set expects key=value, got '" + key_equals_value + "'");
+  }
+  set_key(config, key_equals_value.substr(0, equals), key_equals_value.substr(equals + 1));
+}
+
+std::string describe_config(const LccpConfig& config) {
+  std::string text;
+  for (const Key& key : keys()) {
+    text += std::string(key.name) + ": " + key.get(config) + "    # " + std::string(key.meaning) + "\n";
+  }
+  return text;
+}
+
+}  // namespace lccp
