@@ -9,18 +9,20 @@
 
 namespace lccp {
 
-std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid, const std::vector<std::uint32_t>& supervoxel_of_voxel,
-                                       std::size_t /*supervoxel_count*/) {
+std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid, const Supervoxels& supervoxels) {
+  const auto& supervoxel_of_voxel = supervoxels.supervoxel_of_voxel;
+  const auto& absorbed = supervoxels.absorbed;
   // Each thread collects (a, b) pairs, a < b, packed into 64 bits.
   tbb::enumerable_thread_specific<std::vector<std::uint64_t>> local_pairs;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.size()), [&](const auto& range) {
     auto& pairs = local_pairs.local();
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
+      if (absorbed[v]) continue;
       const std::uint64_t a = supervoxel_of_voxel[v];
       const std::size_t first_of_voxel = pairs.size();
       for (const std::uint32_t* w = grid.neighbors.begin(v); w != grid.neighbors.end(v); ++w) {
         const std::uint64_t pair = a << 32 | supervoxel_of_voxel[*w];
-        if (supervoxel_of_voxel[*w] > a && std::find(pairs.begin() + first_of_voxel, pairs.end(), pair) == pairs.end()) {
+        if (supervoxel_of_voxel[*w] > a && !absorbed[*w] && std::find(pairs.begin() + first_of_voxel, pairs.end(), pair) == pairs.end()) {
           pairs.push_back(pair);
         }
       }

@@ -56,7 +56,7 @@ SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const {
   t.seeds_ms = timer.lap();
   const Supervoxels supervoxels = grow_supervoxels(grid, normals, seeds, config_.supervoxels, v);
   t.growth_ms = timer.lap();
-  const std::vector<Edge> edges = supervoxel_adjacency(grid, supervoxels.supervoxel_of_voxel, supervoxels.size());
+  const std::vector<Edge> edges = supervoxel_adjacency(grid, supervoxels);
   t.adjacency_ms = timer.lap();
   const std::vector<std::uint8_t> convex =
       classify_edges(edges, supervoxels.centroids, supervoxels.normals, config_.convexity);

@@ -47,9 +47,25 @@ SeedCells group_by_seed_cell(const std::vector<Cell>& cell_of_voxel, const detai
   return groups;
 }
 
-// The member voxel nearest the centre of seed cell `c` (ties: smaller id).
-std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& groups, std::size_t c,
-                                     float seed_size) {
+// Calls visit(cell) for seed cell c and each occupied cell around it, c first.
+template <typename Visit>
+void for_each_cell_around(const SeedCells& groups, const detail::CellKeys& keys, std::size_t c, Visit visit) {
+  visit(c);
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        if (!(dx || dy || dz)) continue;
+        const std::uint64_t key = groups.keys[c] + keys.offset(dx, dy, dz);
+        const auto it = std::lower_bound(groups.keys.begin(), groups.keys.end(), key);
+        if (it != groups.keys.end() && *it == key) visit(static_cast<std::size_t>(it - groups.keys.begin()));
+      }
+    }
+  }
+}
+
+// The member voxel nearest the centre of seed cell c (ties: smaller id).
+// (VCCS searches all voxels; restricting to the cell measured no worse on mOSD.)
+std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& groups, std::size_t c, float seed_size) {
   const Eigen::Vector3f centre = (groups.cells[c].cast<float>() + 0.5f) * seed_size;
   std::uint32_t best = kNone;
   float best_distance = std::numeric_limits<float>::infinity();
@@ -63,30 +79,17 @@ std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& gro
   return best;
 }
 
-// Whether more than `enough` voxels lie within `radius` of voxel `seed`; the
-// ball lies within the 27 seed cells around it.
+// Whether more than `enough` voxels lie within `radius` (<= s / 2) of voxel
+// `seed`, which lies in or around seed cell c.
 bool has_voxels_within(const VoxelGrid& grid, const SeedCells& groups, const detail::CellKeys& keys,
                        std::size_t c, std::uint32_t seed, float radius, float enough) {
   float count = 0;
-  const auto count_in_cell = [&](std::size_t cell) {
-    for (const std::uint32_t* v = groups.voxels.begin(cell); v != groups.voxels.end(cell); ++v) {
+  for_each_cell_around(groups, keys, c, [&](std::size_t cell) {
+    for (const std::uint32_t* v = groups.voxels.begin(cell); v != groups.voxels.end(cell) && count <= enough; ++v) {
       count += (grid.centroids[*v] - grid.centroids[seed]).squaredNorm() <= radius * radius;
     }
-    return count > enough;
-  };
-  if (count_in_cell(c)) return true;  // the seed's own cell first: usually enough
-  for (int dx = -1; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dz = -1; dz <= 1; ++dz) {
-        const std::uint64_t key = groups.keys[c] + keys.offset(dx, dy, dz);
-        const auto it = std::lower_bound(groups.keys.begin(), groups.keys.end(), key);
-        if ((dx || dy || dz) && it != groups.keys.end() && *it == key && count_in_cell(it - groups.keys.begin())) {
-          return true;
-        }
-      }
-    }
-  }
-  return false;
+  });
+  return count > enough;
 }
 
 // ---- growth -------------------------------------------------------------------
@@ -100,12 +103,14 @@ struct Centre {
 class Grower {
  public:
   Grower(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& normals, const SupervoxelConfig& config)
-      : grid_(grid), normals_(normals), config_(config), owner_(grid.size(), kNone) {}
+      : grid_(grid), normals_(normals), config_(config), owner_(grid.size(), kNone), claim_(grid.size(), kUnreached),
+        absorbed_(grid.size(), 0) {}
 
   void plant(const std::vector<std::uint32_t>& seeds) {
     centres_.resize(seeds.size());
     for (std::uint32_t k = 0; k < seeds.size(); ++k) {
       owner_[seeds[k]] = k;
+      claim_[seeds[k]] = 0.0f;
       centres_[k] = {grid_.centroids[seeds[k]], normals_[seeds[k]], grid_.colors[seeds[k]]};
     }
   }
@@ -114,21 +119,34 @@ class Grower {
   // and its neighbours' is nearest by the VCCS distance; then centres move.
   void grow_one_ring() {
     std::vector<std::uint32_t> next(owner_.size());
+    std::vector<float> next_claim(owner_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
-      for (std::size_t v = range.begin(); v < range.end(); ++v) next[v] = nearest_candidate(v, owner_[v]);
+      for (std::size_t v = range.begin(); v < range.end(); ++v) {
+        next[v] = owner_[v];
+        next_claim[v] = claim_[v];
+        const auto [k, d] = nearest_other(v);
+        if (k != kNone && d < claim_[v]) {
+          next[v] = k;
+          next_claim[v] = d;
+        }
+      }
     });
     owner_.swap(next);
+    claim_.swap(next_claim);
     update_centres();
   }
 
-  // Voxels no supervoxel reached join their nearest neighbouring supervoxel,
-  // ring by ring, without moving the centres.
+  // Voxels no supervoxel reached take the label of their nearest neighbouring
+  // supervoxel, ring by ring. They are marked absorbed: they neither move its
+  // centre nor connect it to other supervoxels, as in VCCS, where they stay out.
   void absorb_unreached() {
     for (bool changed = true; changed;) {
       std::vector<std::uint32_t> next = owner_;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
         for (std::size_t v = range.begin(); v < range.end(); ++v) {
-          if (owner_[v] == kNone) next[v] = nearest_candidate(v, kNone);
+          if (owner_[v] != kNone) continue;
+          next[v] = nearest_candidate(v, kNone);
+          absorbed_[v] = next[v] != kNone;
         }
       });
       changed = next != owner_;
@@ -168,6 +186,28 @@ class Grower {
            config_.spatial_weight * (grid_.centroids[v] - c.xyz).norm() / config_.seed_size_m;
   }
 
+  // The nearest supervoxel among v's neighbours' other than v's own (ties: smaller id).
+  std::pair<std::uint32_t, float> nearest_other(std::size_t v) const {
+    const std::uint32_t current = owner_[v];
+    std::uint32_t best = kNone;
+    float best_distance = kUnreached;
+    std::array<std::uint32_t, 26> tried;
+    std::size_t tried_count = 0;
+    for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
+      const std::uint32_t k = owner_[*w];
+      if (k == kNone || k == current || std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) {
+        continue;
+      }
+      tried[tried_count++] = k;
+      const float d = distance(v, centres_[k]);
+      if (d < best_distance || (d == best_distance && k < best)) {
+        best = k;
+        best_distance = d;
+      }
+    }
+    return {best, best_distance};
+  }
+
   // The supervoxel nearest to voxel v among its own and its neighbours'
   // (ties: smaller id). Inside a supervoxel nothing can change, so distances
   // are computed only on its boundary.
@@ -196,26 +236,41 @@ class Grower {
     return best;
   }
 
+  // Member voxels of every supervoxel, ascending, absorbed ones left out (a stable counting sort).
+  CompressedRows members() const {
+    CompressedRows rows;
+    rows.offsets.assign(centres_.size() + 1, 0);
+    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
+      if (owner_[v] != kNone && !absorbed_[v]) ++rows.offsets[owner_[v] + 1];
+    }
+    for (std::size_t k = 0; k < centres_.size(); ++k) rows.offsets[k + 1] += rows.offsets[k];
+    rows.items.resize(rows.offsets.back());
+    std::vector<std::uint32_t> next(rows.offsets.begin(), rows.offsets.end() - 1);
+    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
+      if (owner_[v] != kNone && !absorbed_[v]) rows.items[next[owner_[v]]++] = v;
+    }
+    return rows;
+  }
+
   // Centres are the means of member voxel centroids and colours and the
-  // normalized sum of member normals, accumulated in voxel order.
+  // normalized sum of member normals, summed in voxel order. Returns the sizes.
   std::vector<std::uint32_t> update_centres() {
-    std::vector<Centre> sums(centres_.size());
-    std::vector<std::uint32_t> counts(centres_.size(), 0);
-    for (std::size_t v = 0; v < owner_.size(); ++v) {
-      const std::uint32_t k = owner_[v];
-      if (k == kNone) continue;
-      sums[k].xyz += grid_.centroids[v];
-      sums[k].normal += normals_[v];
-      sums[k].rgb += grid_.colors[v];
-      ++counts[k];
-    }
-    for (std::size_t k = 0; k < centres_.size(); ++k) {
-      if (counts[k] == 0) continue;  // emptied: it cannot be a neighbour's owner any more
-      centres_[k].xyz = sums[k].xyz / static_cast<float>(counts[k]);
-      centres_[k].rgb = sums[k].rgb / static_cast<float>(counts[k]);
-      const float length = sums[k].normal.norm();
-      centres_[k].normal = length > 1e-6f ? Eigen::Vector3f(sums[k].normal / length) : -centres_[k].xyz.normalized();
-    }
+    const CompressedRows rows = members();
+    std::vector<std::uint32_t> counts(centres_.size());
+    tbb::parallel_for(std::size_t{0}, centres_.size(), [&](std::size_t k) {
+      counts[k] = rows.count(k);
+      if (counts[k] == 0) return;  // emptied: it cannot be a neighbour's owner any more
+      Centre sum;
+      for (const std::uint32_t* v = rows.begin(k); v != rows.end(k); ++v) {
+        sum.xyz += grid_.centroids[*v];
+        sum.normal += normals_[*v];
+        sum.rgb += grid_.colors[*v];
+      }
+      centres_[k].xyz = sum.xyz / static_cast<float>(counts[k]);
+      centres_[k].rgb = sum.rgb / static_cast<float>(counts[k]);
+      const float length = sum.normal.norm();
+      centres_[k].normal = length > 1e-6f ? Eigen::Vector3f(sum.normal / length) : -centres_[k].xyz.normalized();
+    });
     return counts;
   }
 
@@ -223,6 +278,8 @@ class Grower {
   const std::vector<Eigen::Vector3f>& normals_;
   const SupervoxelConfig& config_;
   std::vector<std::uint32_t> owner_;
+  std::vector<float> claim_;           // distance at which the owner claimed the voxel (VCCS keeps it)
+  std::vector<std::uint8_t> absorbed_; // joined after growth: labelled, but no part of the patch
   std::vector<Centre> centres_;
 };
 
@@ -241,6 +298,7 @@ Supervoxels Grower::finish() {
   }
   result.supervoxel_of_voxel.resize(owner_.size());
   for (std::size_t v = 0; v < owner_.size(); ++v) result.supervoxel_of_voxel[v] = new_id[owner_[v]];
+  result.absorbed = std::move(absorbed_);
   return result;
 }
 

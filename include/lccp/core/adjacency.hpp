@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lccp/core/supervoxels.hpp"
 #include "lccp/core/voxel_grid.hpp"
 
 namespace lccp {
@@ -13,9 +14,8 @@ struct Edge {
   friend bool operator==(const Edge&, const Edge&) = default;
 };
 
-// Two supervoxels are adjacent when any of their voxels are. Sorted, unique.
-std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid,
-                                       const std::vector<std::uint32_t>& supervoxel_of_voxel,
-                                       std::size_t supervoxel_count);
+// Two supervoxels are adjacent when any of their grown (not absorbed) voxels
+// are. Sorted, unique.
+std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid, const Supervoxels& supervoxels);
 
 }  // namespace lccp

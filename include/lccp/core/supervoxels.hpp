@@ -18,10 +18,11 @@ std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelC
 
 struct Supervoxels {
   std::vector<std::uint32_t> supervoxel_of_voxel;  // every voxel has one
-  std::vector<Eigen::Vector3f> centroids;          // mean of member voxel centroids (m)
-  std::vector<Eigen::Vector3f> normals;            // normalized sum of member voxel normals
-  std::vector<Eigen::Vector3f> colors;             // mean member voxel colour
-  std::vector<std::uint32_t> voxel_counts;
+  std::vector<std::uint8_t> absorbed;              // per voxel: 1 if it joined after growth (label only)
+  std::vector<Eigen::Vector3f> centroids;          // mean of grown member voxel centroids (m)
+  std::vector<Eigen::Vector3f> normals;            // normalized sum of grown member voxel normals
+  std::vector<Eigen::Vector3f> colors;             // mean grown member voxel colour
+  std::vector<std::uint32_t> voxel_counts;         // grown members
 
   std::size_t size() const { return centroids.size(); }
 };
@@ -29,8 +30,10 @@ struct Supervoxels {
 // Flow-constrained growth: int(1.8 s / v) - 1 synchronous passes in which every
 // voxel joins the neighbouring supervoxel with the smallest distance
 // D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s, then centroids are
-// recomputed. Voxels no supervoxel reached join their nearest grown neighbour;
-// components without any seed become supervoxels of their own.
+// recomputed; a voxel changes owner only for a distance below the one at which
+// it was claimed (VCCS). Voxels no supervoxel reached are absorbed: they take
+// the nearest neighbouring supervoxel's label but do not shape it or its
+// adjacency. Components without any seed become supervoxels of their own.
 Supervoxels grow_supervoxels(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& voxel_normals,
                              const std::vector<std::uint32_t>& seeds, const SupervoxelConfig& config,
                              float voxel_size_m);
