@@ -47,20 +47,24 @@ SeedCells group_by_seed_cell(const std::vector<Cell>& cell_of_voxel, const detai
   return groups;
 }
 
-// Calls visit(cell) for seed cell c and each occupied cell around it, c first.
-template <typename Visit>
-void for_each_cell_around(const SeedCells& groups, const detail::CellKeys& keys, std::size_t c, Visit visit) {
-  visit(c);
+// Calls done(cell) for seed cell c, then for each occupied cell around it,
+// until it returns true; returns whether it did.
+template <typename Done>
+bool any_cell_around(const SeedCells& groups, const detail::CellKeys& keys, std::size_t c, Done done) {
+  if (done(c)) return true;
   for (int dx = -1; dx <= 1; ++dx) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dz = -1; dz <= 1; ++dz) {
         if (!(dx || dy || dz)) continue;
         const std::uint64_t key = groups.keys[c] + keys.offset(dx, dy, dz);
         const auto it = std::lower_bound(groups.keys.begin(), groups.keys.end(), key);
-        if (it != groups.keys.end() && *it == key) visit(static_cast<std::size_t>(it - groups.keys.begin()));
+        if (it != groups.keys.end() && *it == key && done(static_cast<std::size_t>(it - groups.keys.begin()))) {
+          return true;
+        }
       }
     }
   }
+  return false;
 }
 
 // The member voxel nearest the centre of seed cell c (ties: smaller id).
@@ -84,12 +88,12 @@ std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& gro
 bool has_voxels_within(const VoxelGrid& grid, const SeedCells& groups, const detail::CellKeys& keys,
                        std::size_t c, std::uint32_t seed, float radius, float enough) {
   float count = 0;
-  for_each_cell_around(groups, keys, c, [&](std::size_t cell) {
-    for (const std::uint32_t* v = groups.voxels.begin(cell); v != groups.voxels.end(cell) && count <= enough; ++v) {
+  return any_cell_around(groups, keys, c, [&](std::size_t cell) {
+    for (const std::uint32_t* v = groups.voxels.begin(cell); v != groups.voxels.end(cell); ++v) {
       count += (grid.centroids[*v] - grid.centroids[seed]).squaredNorm() <= radius * radius;
     }
+    return count > enough;
   });
-  return count > enough;
 }
 
 // ---- growth -------------------------------------------------------------------
@@ -100,6 +104,14 @@ struct Centre {
   Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
 };
 
+// Running sums over a supervoxel's member voxels, updated as voxels come and go.
+struct MemberSums {
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rgb = Eigen::Vector3d::Zero();
+  std::uint32_t count = 0;
+};
+
 class Grower {
  public:
   Grower(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& normals, const SupervoxelConfig& config)
@@ -107,30 +119,35 @@ class Grower {
         absorbed_(grid.size(), 0) {}
 
   void plant(const std::vector<std::uint32_t>& seeds) {
-    centres_.resize(seeds.size());
+    sums_.resize(seeds.size());
     for (std::uint32_t k = 0; k < seeds.size(); ++k) {
       owner_[seeds[k]] = k;
       claim_[seeds[k]] = 0.0f;
-      centres_[k] = {grid_.centroids[seeds[k]], normals_[seeds[k]], grid_.colors[seeds[k]]};
+      add_member(k, seeds[k], +1);
     }
+    update_centres();
   }
 
-  // One synchronous pass: every voxel joins whichever supervoxel among its own
-  // and its neighbours' is nearest by the VCCS distance; then centres move.
+  // One synchronous pass: a voxel moves to the nearest neighbouring supervoxel
+  // if that is closer than the distance at which its owner claimed it (VCCS
+  // steals only then); then the centres move.
   void grow_one_ring() {
     std::vector<std::uint32_t> next(owner_.size());
     std::vector<float> next_claim(owner_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
       for (std::size_t v = range.begin(); v < range.end(); ++v) {
-        next[v] = owner_[v];
-        next_claim[v] = claim_[v];
         const auto [k, d] = nearest_other(v);
-        if (k != kNone && d < claim_[v]) {
-          next[v] = k;
-          next_claim[v] = d;
-        }
+        const bool steal = k != kNone && d < claim_[v];
+        next[v] = steal ? k : owner_[v];
+        next_claim[v] = steal ? d : claim_[v];
       }
     });
+    // Members move in voxel order, so the sums do not depend on threads.
+    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
+      if (next[v] == owner_[v]) continue;
+      if (owner_[v] != kNone) add_member(owner_[v], v, -1);
+      add_member(next[v], v, +1);
+    }
     owner_.swap(next);
     claim_.swap(next_claim);
     update_centres();
@@ -145,7 +162,7 @@ class Grower {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
         for (std::size_t v = range.begin(); v < range.end(); ++v) {
           if (owner_[v] != kNone) continue;
-          next[v] = nearest_candidate(v, kNone);
+          next[v] = nearest_other(v).first;
           absorbed_[v] = next[v] != kNone;
         }
       });
@@ -159,13 +176,14 @@ class Grower {
     std::vector<std::uint32_t> stack;
     for (std::uint32_t v = 0; v < owner_.size(); ++v) {
       if (owner_[v] != kNone) continue;
-      const auto k = static_cast<std::uint32_t>(centres_.size());
-      centres_.push_back({});
+      const auto k = static_cast<std::uint32_t>(sums_.size());
+      sums_.emplace_back();
       owner_[v] = k;
       stack.push_back(v);
       while (!stack.empty()) {
         const std::uint32_t u = stack.back();
         stack.pop_back();
+        add_member(k, u, +1);
         for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
           if (owner_[*w] == kNone) {
             owner_[*w] = k;
@@ -174,6 +192,7 @@ class Grower {
         }
       }
     }
+    update_centres();
   }
 
   Supervoxels finish();
@@ -186,7 +205,8 @@ class Grower {
            config_.spatial_weight * (grid_.centroids[v] - c.xyz).norm() / config_.seed_size_m;
   }
 
-  // The nearest supervoxel among v's neighbours' other than v's own (ties: smaller id).
+  // The nearest supervoxel among v's neighbours' other than v's own (ties:
+  // smaller id), with its distance; kNone if every neighbour is v's own or free.
   std::pair<std::uint32_t, float> nearest_other(std::size_t v) const {
     const std::uint32_t current = owner_[v];
     std::uint32_t best = kNone;
@@ -195,9 +215,8 @@ class Grower {
     std::size_t tried_count = 0;
     for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
       const std::uint32_t k = owner_[*w];
-      if (k == kNone || k == current || std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) {
-        continue;
-      }
+      if (k == kNone || k == current) continue;
+      if (std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) continue;
       tried[tried_count++] = k;
       const float d = distance(v, centres_[k]);
       if (d < best_distance || (d == best_distance && k < best)) {
@@ -208,70 +227,28 @@ class Grower {
     return {best, best_distance};
   }
 
-  // The supervoxel nearest to voxel v among its own and its neighbours'
-  // (ties: smaller id). Inside a supervoxel nothing can change, so distances
-  // are computed only on its boundary.
-  std::uint32_t nearest_candidate(std::size_t v, std::uint32_t current) const {
-    const std::uint32_t* first = grid_.neighbors.begin(v);
-    const std::uint32_t* last = grid_.neighbors.end(v);
-    const std::uint32_t* w = first;
-    while (w != last && (owner_[*w] == current || owner_[*w] == kNone)) ++w;
-    if (w == last) return current;
-    std::uint32_t best = current;
-    float best_distance = current == kNone ? kUnreached : distance(v, centres_[current]);
-    std::array<std::uint32_t, 26> tried;
-    std::size_t tried_count = 0;
-    for (; w != last; ++w) {
-      const std::uint32_t k = owner_[*w];
-      if (k == kNone || k == current || std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) {
-        continue;
-      }
-      tried[tried_count++] = k;
-      const float d = distance(v, centres_[k]);
-      if (d < best_distance || (d == best_distance && k < best)) {
-        best = k;
-        best_distance = d;
-      }
-    }
-    return best;
-  }
-
-  // Member voxels of every supervoxel, ascending, absorbed ones left out (a stable counting sort).
-  CompressedRows members() const {
-    CompressedRows rows;
-    rows.offsets.assign(centres_.size() + 1, 0);
-    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
-      if (owner_[v] != kNone && !absorbed_[v]) ++rows.offsets[owner_[v] + 1];
-    }
-    for (std::size_t k = 0; k < centres_.size(); ++k) rows.offsets[k + 1] += rows.offsets[k];
-    rows.items.resize(rows.offsets.back());
-    std::vector<std::uint32_t> next(rows.offsets.begin(), rows.offsets.end() - 1);
-    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
-      if (owner_[v] != kNone && !absorbed_[v]) rows.items[next[owner_[v]]++] = v;
-    }
-    return rows;
+  void add_member(std::uint32_t k, std::uint32_t v, int sign) {
+    MemberSums& sum = sums_[k];
+    sum.xyz += sign * grid_.centroids[v].cast<double>();
+    sum.normal += sign * normals_[v].cast<double>();
+    sum.rgb += sign * grid_.colors[v].cast<double>();
+    sum.count += sign;
   }
 
   // Centres are the means of member voxel centroids and colours and the
-  // normalized sum of member normals, summed in voxel order. Returns the sizes.
-  std::vector<std::uint32_t> update_centres() {
-    const CompressedRows rows = members();
-    std::vector<std::uint32_t> counts(centres_.size());
-    tbb::parallel_for(std::size_t{0}, centres_.size(), [&](std::size_t k) {
-      counts[k] = rows.count(k);
-      if (counts[k] == 0) return;  // emptied: it cannot be a neighbour's owner any more
-      Centre sum;
-      for (const std::uint32_t* v = rows.begin(k); v != rows.end(k); ++v) {
-        sum.xyz += grid_.centroids[*v];
-        sum.normal += normals_[*v];
-        sum.rgb += grid_.colors[*v];
-      }
-      centres_[k].xyz = sum.xyz / static_cast<float>(counts[k]);
-      centres_[k].rgb = sum.rgb / static_cast<float>(counts[k]);
-      const float length = sum.normal.norm();
-      centres_[k].normal = length > 1e-6f ? Eigen::Vector3f(sum.normal / length) : -centres_[k].xyz.normalized();
+  // normalized sum of member normals. Emptied supervoxels keep their last
+  // centre; no voxel can reach them any more.
+  void update_centres() {
+    centres_.resize(sums_.size());
+    tbb::parallel_for(std::size_t{0}, sums_.size(), [&](std::size_t k) {
+      const MemberSums& sum = sums_[k];
+      if (sum.count == 0) return;
+      Centre& centre = centres_[k];
+      centre.xyz = (sum.xyz / sum.count).cast<float>();
+      centre.rgb = (sum.rgb / sum.count).cast<float>();
+      const double length = sum.normal.norm();
+      centre.normal = length > 1e-6 ? Eigen::Vector3f((sum.normal / length).cast<float>()) : Eigen::Vector3f(-centre.xyz.normalized());
     });
-    return counts;
   }
 
   const VoxelGrid& grid_;
@@ -280,21 +257,21 @@ class Grower {
   std::vector<std::uint32_t> owner_;
   std::vector<float> claim_;           // distance at which the owner claimed the voxel (VCCS keeps it)
   std::vector<std::uint8_t> absorbed_; // joined after growth: labelled, but no part of the patch
+  std::vector<MemberSums> sums_;
   std::vector<Centre> centres_;
 };
 
 Supervoxels Grower::finish() {
-  const std::vector<std::uint32_t> counts = update_centres();
   // Drop emptied supervoxels, keeping the order of the rest.
-  std::vector<std::uint32_t> new_id(centres_.size(), kNone);
+  std::vector<std::uint32_t> new_id(sums_.size(), kNone);
   Supervoxels result;
-  for (std::size_t k = 0; k < centres_.size(); ++k) {
-    if (counts[k] == 0) continue;
+  for (std::size_t k = 0; k < sums_.size(); ++k) {
+    if (sums_[k].count == 0) continue;
     new_id[k] = static_cast<std::uint32_t>(result.size());
     result.centroids.push_back(centres_[k].xyz);
     result.normals.push_back(centres_[k].normal);
     result.colors.push_back(centres_[k].rgb);
-    result.voxel_counts.push_back(counts[k]);
+    result.voxel_counts.push_back(sums_[k].count);
   }
   result.supervoxel_of_voxel.resize(owner_.size());
   for (std::size_t v = 0; v < owner_.size(); ++v) result.supervoxel_of_voxel[v] = new_id[owner_[v]];
