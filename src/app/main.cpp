@@ -18,9 +18,9 @@ int main(int argc, char** argv) {
   cli.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
 
+  cli.fallthrough();  // --threads and --log-level may follow the subcommand (set before adding them)
   const std::vector<lccp::app::Subcommand> commands{lccp::app::add_segment_command(cli),
                                                     lccp::app::add_eval_command(cli)};
-  cli.fallthrough();
 
   try {
     cli.parse(argc, argv);

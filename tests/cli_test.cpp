@@ -1,0 +1,489 @@
+// End-to-end tests of the `lccp` command line: the real binary is run on real
+// scenes and on broken inputs, with stdout, stderr and the exit status captured.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lccp/cloud.hpp"
+#include "lccp/io/cloud_io.hpp"
+
+extern char** environ;
+
+namespace lccp {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kBinary = LCCP_BINARY;
+const fs::path kData = LCCP_TEST_DATA_DIR;
+const fs::path kConfig = LCCP_CONFIG_DIR;
+const fs::path kOrganizedScene = kData / "mosd_test2.pcd";    // 640 x 480, has a GT label field
+const fs::path kUnorganizedScene = kData / "mosd_test43.pcd";  // 170986 x 1
+constexpr const char* kTimeoutSeconds = "60";
+
+struct RunResult {
+  std::string command;  // for failure messages
+  int exit_code = -1;   // -1 if the process did not exit normally
+  int signal = 0;       // the signal that killed it, 0 if none
+  std::string out;
+  std::string err;
+};
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  ASSERT_TRUE(out.good()) << path;
+}
+
+// Runs `timeout 60 lccp ARGS...` without a shell, stdin from /dev/null and
+// stdout/stderr into files under `capture_dir`. timeout(1) re-raises a signal
+// that killed lccp, so a crash shows up as `signal`; a hang exits 124.
+RunResult run_lccp(const fs::path& capture_dir, const std::vector<std::string>& args) {
+  RunResult result;
+  result.command = kBinary.string();
+  for (const std::string& arg : args) result.command += " " + arg;
+
+  static int run_number = 0;
+  const std::string tag = std::to_string(run_number++);
+  const fs::path out_path = capture_dir / ("stdout" + tag);
+  const fs::path err_path = capture_dir / ("stderr" + tag);
+
+  std::vector<std::string> argv_text = {"timeout", "-k", "5", kTimeoutSeconds, kBinary.string()};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : argv_text) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int spawn_error = posix_spawnp(&pid, "timeout", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error != 0) {
+    ADD_FAILURE() << "cannot start " << result.command << ": " << std::strerror(spawn_error);
+    return result;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      ADD_FAILURE() << "waitpid failed for " << result.command;
+      return result;
+    }
+  }
+  if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+  result.out = read_bytes(out_path);
+  result.err = read_bytes(err_path);
+  EXPECT_NE(result.exit_code, 124) << "timed out after " << kTimeoutSeconds << " s: " << result.command;
+  return result;
+}
+
+std::string describe(const RunResult& r) {
+  return r.command + "\n  exit " + std::to_string(r.exit_code) + ", signal " + std::to_string(r.signal) +
+         "\n  stdout: [" + r.out + "]\n  stderr: [" + r.err + "]";
+}
+
+// An lccp::Error: exit 1, nothing on stdout, exactly one stderr line
+// "lccp: error: ..." containing every phrase.
+void expect_error(const RunResult& r, std::initializer_list<std::string> phrases) {
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.signal, 0) << "killed by a signal";
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err.rfind("lccp: error: ", 0), 0u) << "stderr does not start with 'lccp: error: '";
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr is not exactly one line";
+  EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << "stderr does not end with a newline";
+  for (const std::string& phrase : phrases) {
+    EXPECT_NE(r.err.find(phrase), std::string::npos) << "stderr does not mention '" << phrase << "'";
+  }
+}
+
+// A CLI11 usage error: a normal non-zero exit (not 1, which is lccp::Error; not
+// a timeout or a shell-style signal code) with a message on stderr.
+void expect_usage_error(const RunResult& r) {
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.signal, 0) << "killed by a signal";
+  EXPECT_GT(r.exit_code, 1);
+  EXPECT_LT(r.exit_code, 124);
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(r.err.empty());
+}
+
+void expect_success(const RunResult& r) {
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.signal, 0) << "killed by a signal";
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+}
+
+std::set<std::string> list_dir(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename().string());
+  return names;
+}
+
+// "key value" from a line like "..., supervoxels 2468, segments 3 | ...".
+unsigned long summary_count(const std::string& summary, const std::string& key) {
+  std::smatch match;
+  const std::regex pattern("\\b" + key + " ([0-9]+)");
+  if (!std::regex_search(summary, match, pattern)) {
+    ADD_FAILURE() << "no '" << key << " N' in summary: " << summary;
+    return 0;
+  }
+  return std::stoul(match[1]);
+}
+
+// The number after "key": in one-line JSON output.
+double json_number(const std::string& json, const std::string& key) {
+  std::smatch match;
+  const std::regex pattern("\"" + key + "\": *(-?[0-9][0-9.eE+-]*)");
+  if (!std::regex_search(json, match, pattern)) {
+    ADD_FAILURE() << "no number \"" << key << "\" in: " << json;
+    return -1.0;
+  }
+  return std::stod(match[1]);
+}
+
+// Header keyword -> its words, up to and including DATA.
+std::map<std::string, std::vector<std::string>> pcd_header(const fs::path& path) {
+  std::map<std::string, std::vector<std::string>> header;
+  std::ifstream in(path, std::ios::binary);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string key;
+    if (!(words >> key) || key[0] == '#') continue;
+    std::vector<std::string>& values = header[key];
+    for (std::string word; words >> word;) values.push_back(word);
+    if (key == "DATA") break;
+  }
+  return header;
+}
+
+std::uint32_t big_endian_u32(const std::string& bytes, std::size_t at) {
+  std::uint32_t value = 0;
+  for (std::size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<unsigned char>(bytes.at(at + i));
+  return value;
+}
+
+// An ascii PCD with the given fields (all float, 4 bytes) and point rows.
+std::string ascii_pcd(const std::vector<std::string>& fields, std::uint32_t width, std::uint32_t height,
+                      const std::vector<std::string>& rows) {
+  std::string names, sizes, types, counts;
+  for (const std::string& field : fields) {
+    names += " " + field;
+    sizes += " 4";
+    types += " F";
+    counts += " 1";
+  }
+  std::string text = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS" + names + "\nSIZE" + sizes +
+                     "\nTYPE" + types + "\nCOUNT" + counts + "\nWIDTH " + std::to_string(width) + "\nHEIGHT " +
+                     std::to_string(height) + "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(width * height) +
+                     "\nDATA ascii\n";
+  for (const std::string& row : rows) text += row + "\n";
+  return text;
+}
+
+// Each test gets a fresh folder: `work_` holds inputs the test writes and the
+// outputs lccp writes; the captured stdout/stderr live beside it.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    root_ = fs::temp_directory_path() /
+            ("lccp_cli_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+    fs::remove_all(root_);
+    work_ = root_ / "work";
+    capture_ = root_ / "capture";
+    fs::create_directories(work_);
+    fs::create_directories(capture_);
+  }
+
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+
+  RunResult run(const std::vector<std::string>& args) { return run_lccp(capture_, args); }
+
+  fs::path out_pcd() const { return work_ / "out.pcd"; }
+  fs::path out_png() const { return work_ / "out.png"; }
+
+  // `lccp segment INPUT -o OUT.pcd --png OUT.png EXTRA...` must fail with one
+  // line naming the problem and leave the work folder as it was.
+  void expect_segment_fails(const fs::path& input, const std::vector<std::string>& extra,
+                            std::initializer_list<std::string> phrases) {
+    const std::set<std::string> before = list_dir(work_);
+    std::vector<std::string> args = {"segment", input.string(), "-o", out_pcd().string(), "--png",
+                                     out_png().string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(args);
+    expect_error(r, phrases);
+    EXPECT_EQ(list_dir(work_), before) << "files left behind by: " << r.command;
+  }
+
+  // Segments the organized scene into out.pcd (and out.png); returns the summary line.
+  std::string segment_scene(const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {"segment", kOrganizedScene.string(), "-o", out_pcd().string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(args);
+    expect_success(r);
+    return r.out;
+  }
+
+  fs::path root_, work_, capture_;
+};
+
+// --- A. bad inputs: one line, exit 1, nothing written ------------------------------
+
+TEST_F(CliTest, MissingInputFile) {
+  expect_segment_fails(work_ / "absent.pcd", {}, {"absent.pcd", "no such file"});
+}
+
+TEST_F(CliTest, TextFileIsNotAPointCloud) {
+  write_bytes(work_ / "x.pcd", "hello, this is not a point cloud\nsecond line\n");
+  expect_segment_fails(work_ / "x.pcd", {}, {"x.pcd", "not a point cloud"});
+}
+
+TEST_F(CliTest, PngRenamedToPcdIsNotAPointCloud) {
+  // A complete 1 x 1 RGBA PNG.
+  const unsigned char png[] = {0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48,
+                               0x44, 0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00,
+                               0x00, 0x1F, 0x15, 0xC4, 0x89, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x44, 0x41, 0x54, 0x78,
+                               0x9C, 0x63, 0x00, 0x01, 0x00, 0x00, 0x05, 0x00, 0x01, 0x0D, 0x0A, 0x2D, 0xB4, 0x00,
+                               0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
+  write_bytes(work_ / "image.pcd", std::string(std::begin(png), std::end(png)));
+  expect_segment_fails(work_ / "image.pcd", {}, {"image.pcd", "not a point cloud"});
+}
+
+TEST_F(CliTest, TruncatedPcd) {
+  const std::string scene = read_bytes(kOrganizedScene);
+  ASSERT_GT(scene.size(), 1000u);
+  write_bytes(work_ / "half.pcd", scene.substr(0, scene.size() / 2));
+  write_bytes(work_ / "head.pcd", scene.substr(0, 200));
+  expect_segment_fails(work_ / "half.pcd", {}, {"half.pcd", "truncated"});
+  expect_segment_fails(work_ / "head.pcd", {}, {"head.pcd", "truncated"});
+}
+
+TEST_F(CliTest, PcdWithoutXyzFields) {
+  write_bytes(work_ / "abc.pcd", ascii_pcd({"a", "b", "c"}, 2, 2, {"1 2 3", "4 5 6", "7 8 9", "1 1 1"}));
+  expect_segment_fails(work_ / "abc.pcd", {}, {"abc.pcd", "no x/y/z"});
+}
+
+TEST_F(CliTest, EmptyCloud) {
+  write_bytes(work_ / "empty.pcd", ascii_pcd({"x", "y", "z"}, 0, 1, {}));
+  expect_segment_fails(work_ / "empty.pcd", {}, {"no points"});
+}
+
+TEST_F(CliTest, AllNanCloud) {
+  // Organized, so that --png is legal and the empty content is what fails.
+  write_bytes(work_ / "nan.pcd", ascii_pcd({"x", "y", "z"}, 2, 2, std::vector<std::string>(4, "nan nan nan")));
+  expect_segment_fails(work_ / "nan.pcd", {}, {"no finite points"});
+}
+
+TEST_F(CliTest, VoxelSizeNotPositive) {
+  expect_segment_fails(kOrganizedScene, {"--set", "voxel_size_m=0"}, {"voxel_size_m"});
+  expect_segment_fails(kOrganizedScene, {"--set", "voxel_size_m=-0.01"}, {"voxel_size_m"});
+}
+
+TEST_F(CliTest, SeedSmallerThanVoxel) {
+  expect_segment_fails(kOrganizedScene, {"--set", "seed_size_m=0.001"}, {"seed_size_m"});
+}
+
+TEST_F(CliTest, UnknownConfigKeyInSet) {
+  expect_segment_fails(kOrganizedScene, {"--set", "bogus=1"}, {"unknown config key", "bogus"});
+}
+
+TEST_F(CliTest, UnknownConfigKeyInYaml) {
+  write_bytes(work_ / "bogus.yaml", "voxel_size_m: 0.005\nbogus: 1\n");
+  expect_segment_fails(kOrganizedScene, {"--config", (work_ / "bogus.yaml").string()},
+                       {"bogus.yaml", "unknown config key", "bogus"});
+}
+
+TEST_F(CliTest, NonNumericValueInYaml) {
+  write_bytes(work_ / "words.yaml", "voxel_size_m: five millimetres\n");
+  expect_segment_fails(kOrganizedScene, {"--config", (work_ / "words.yaml").string()},
+                       {"words.yaml", "voxel_size_m", "not a number"});
+}
+
+TEST_F(CliTest, MissingConfigFile) {
+  expect_segment_fails(kOrganizedScene, {"--config", (work_ / "absent.yaml").string()}, {"absent.yaml", "cannot open"});
+}
+
+TEST_F(CliTest, UnwritablePngRemovesThePcdAlreadyWritten) {
+  const std::set<std::string> before = list_dir(work_);
+  const RunResult r = run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), "--png",
+                           (work_ / "absent_folder" / "out.png").string()});
+  expect_error(r, {"out.png", "does not exist"});
+  EXPECT_EQ(list_dir(work_), before) << "files left behind by: " << r.command;
+}
+
+// --- B. happy path ----------------------------------------------------------------
+
+TEST_F(CliTest, SegmentsOrganizedSceneToPcdAndPng) {
+  const RunResult r = run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), "--png", out_png().string()});
+  expect_success(r);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_NE(r.out.find("segments"), std::string::npos) << r.out;
+  EXPECT_EQ(list_dir(work_), (std::set<std::string>{"out.pcd", "out.png"}));
+
+  // Header: a uint32 label field, organized 640 x 480.
+  const auto header = pcd_header(out_pcd());
+  const auto& fields = header.count("FIELDS") ? header.at("FIELDS") : std::vector<std::string>{};
+  const auto label = std::find(fields.begin(), fields.end(), "label");
+  ASSERT_NE(label, fields.end()) << "no label field in " << out_pcd();
+  const auto index = static_cast<std::size_t>(label - fields.begin());
+  ASSERT_TRUE(header.count("TYPE") && header.count("SIZE")) << "no TYPE or SIZE line";
+  ASSERT_LT(index, header.at("TYPE").size());
+  ASSERT_LT(index, header.at("SIZE").size());
+  EXPECT_EQ(header.at("TYPE")[index], "U");
+  EXPECT_EQ(header.at("SIZE")[index], "4");
+  EXPECT_EQ(header.count("WIDTH") ? header.at("WIDTH") : std::vector<std::string>{}, std::vector<std::string>{"640"});
+  EXPECT_EQ(header.count("HEIGHT") ? header.at("HEIGHT") : std::vector<std::string>{}, std::vector<std::string>{"480"});
+
+  // Content: the input's points in place; 0 exactly on non-finite points;
+  // labels dense 1..K, K as in the summary.
+  const LabelledCloud input = read_cloud(kOrganizedScene);
+  const LabelledCloud output = read_cloud(out_pcd());
+  ASSERT_TRUE(output.labels.has_value());
+  ASSERT_EQ(output.cloud.size(), input.cloud.size());
+  EXPECT_EQ(output.cloud.width, 640u);
+  EXPECT_EQ(output.cloud.height, 480u);
+  std::vector<std::size_t> segment_sizes;
+  std::size_t finite = 0, mislabelled = 0, moved = 0;
+  for (std::size_t i = 0; i < output.cloud.size(); ++i) {
+    const bool is_point = is_finite(output.cloud.points[i]);
+    const std::uint32_t l = (*output.labels)[i];
+    finite += is_point;
+    mislabelled += is_point != (l != 0);
+    moved += is_point != is_finite(input.cloud.points[i]) ||
+             (is_point && output.cloud.points[i] != input.cloud.points[i]);
+    if (l >= segment_sizes.size()) segment_sizes.resize(l + 1, 0);
+    ++segment_sizes[l];
+  }
+  EXPECT_EQ(mislabelled, 0u) << "points whose label is 0 iff they are finite is violated";
+  EXPECT_EQ(moved, 0u) << "output points differ from the input's";
+  EXPECT_EQ(finite, summary_count(r.out, "finite"));
+  const std::size_t k = segment_sizes.empty() ? 0 : segment_sizes.size() - 1;
+  EXPECT_GE(k, 1u);
+  EXPECT_EQ(k, summary_count(r.out, "segments"));
+  for (std::size_t l = 1; l <= k; ++l) {
+    EXPECT_GT(segment_sizes[l], 0u) << "label " << l << " unused: labels are not dense 1.." << k;
+  }
+
+  // PNG: signature, then IHDR with 640 x 480.
+  const std::string png = read_bytes(out_png());
+  ASSERT_GE(png.size(), 33u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(png.substr(12, 4), "IHDR");
+  EXPECT_EQ(big_endian_u32(png, 16), 640u);
+  EXPECT_EQ(big_endian_u32(png, 20), 480u);
+}
+
+TEST_F(CliTest, PngOfUnorganizedCloudFails) {
+  expect_segment_fails(kUnorganizedScene, {}, {"mosd_test43.pcd", "organized"});
+}
+
+TEST_F(CliTest, ThreadCountDoesNotChangeOutput) {
+  const fs::path one = work_ / "one.pcd", two = work_ / "two.pcd";
+  expect_success(run({"--threads", "1", "segment", kOrganizedScene.string(), "-o", one.string()}));
+  expect_success(run({"--threads", "2", "segment", kOrganizedScene.string(), "-o", two.string()}));
+  const std::string bytes_one = read_bytes(one);
+  EXPECT_FALSE(bytes_one.empty());
+  EXPECT_TRUE(bytes_one == read_bytes(two)) << "--threads 1 and --threads 2 give different files";
+}
+
+// README: `lccp segment IN.pcd -o OUT.pcd [...] [--threads N]`.
+TEST_F(CliTest, ThreadsOptionAfterSubcommandAsDocumented) {
+  const fs::path one = work_ / "one.pcd";
+  const RunResult r = run({"segment", kOrganizedScene.string(), "-o", one.string(), "--threads", "1"});
+  expect_success(r);
+  ASSERT_EQ(r.exit_code, 0) << "the documented position of --threads is rejected";
+  segment_scene();
+  const std::string bytes_one = read_bytes(one);
+  EXPECT_FALSE(bytes_one.empty());
+  EXPECT_TRUE(bytes_one == read_bytes(out_pcd())) << "--threads 1 output differs from the default run's";
+}
+
+TEST_F(CliTest, PresetP2GivesFewerSupervoxelsThanP1) {
+  const std::string p1 = segment_scene({"--config", (kConfig / "p1.yaml").string()});
+  const std::string p2 = segment_scene({"--config", (kConfig / "p2.yaml").string()});
+  const unsigned long p1_supervoxels = summary_count(p1, "supervoxels");
+  const unsigned long p2_supervoxels = summary_count(p2, "supervoxels");
+  EXPECT_GT(p2_supervoxels, 0u);
+  EXPECT_LT(p2_supervoxels, p1_supervoxels) << "P1: " << p1 << "P2: " << p2;
+}
+
+// --- C. eval ----------------------------------------------------------------------
+
+TEST_F(CliTest, EvalOfSegmentationScoresAboveFloor) {
+  segment_scene();
+  const RunResult r = run({"eval", out_pcd().string(), kOrganizedScene.string(), "--ignore", "0-9", "--json"});
+  expect_success(r);
+  ASSERT_GE(r.out.size(), 2u);
+  EXPECT_EQ(r.out.front(), '{') << r.out;
+  EXPECT_EQ(r.out.substr(r.out.size() - 2), "}\n") << r.out;
+  EXPECT_GT(json_number(r.out, "wov"), 0.9) << r.out;
+}
+
+TEST_F(CliTest, EvalOfGroundTruthAgainstItselfIsPerfect) {
+  const RunResult r = run({"eval", kOrganizedScene.string(), kOrganizedScene.string(), "--ignore", "0-9", "--json"});
+  expect_success(r);
+  EXPECT_DOUBLE_EQ(json_number(r.out, "wov"), 1.0) << r.out;
+  EXPECT_DOUBLE_EQ(json_number(r.out, "fp"), 0.0) << r.out;
+}
+
+TEST_F(CliTest, EvalOfCloudWithoutLabelsFails) {
+  write_bytes(work_ / "plain.pcd", ascii_pcd({"x", "y", "z"}, 2, 1, {"0 0 1", "0 0.01 1"}));
+  expect_error(run({"eval", (work_ / "plain.pcd").string(), kOrganizedScene.string()}), {"plain.pcd", "no label"});
+  expect_error(run({"eval", kOrganizedScene.string(), (work_ / "plain.pcd").string()}), {"plain.pcd", "no label"});
+}
+
+TEST_F(CliTest, EvalOfCloudsOfDifferentSizesFails) {
+  expect_error(run({"eval", kUnorganizedScene.string(), kOrganizedScene.string()}), {"170986", "307200"});
+}
+
+TEST_F(CliTest, EvalWithEmptyIgnoreRangeFails) {
+  expect_error(run({"eval", kOrganizedScene.string(), kOrganizedScene.string(), "--ignore", "9-0"}),
+               {"--ignore", "9-0"});
+}
+
+// --- D. usage errors ----------------------------------------------------------------
+
+TEST_F(CliTest, UsageErrors) {
+  const std::set<std::string> before = list_dir(work_);
+  expect_usage_error(run({}));
+  expect_usage_error(run({"frobnicate", kOrganizedScene.string()}));
+  expect_usage_error(run({"segment"}));
+  expect_usage_error(run({"segment", kOrganizedScene.string()}));  // no -o
+  expect_usage_error(run({"eval", kOrganizedScene.string()}));     // no ground truth
+  expect_usage_error(run({"--threads", "0", "segment", kOrganizedScene.string(), "-o", out_pcd().string()}));
+  EXPECT_EQ(list_dir(work_), before);
+}
+
+}  // namespace
+}  // namespace lccp
