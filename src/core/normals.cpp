@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -32,27 +31,37 @@ Eigen::Matrix3d covariance_of(const Moments& m) {
   return second / m(0) - mean * mean.transpose();
 }
 
-// Eigenvector of the smallest eigenvalue of a symmetric 3x3 matrix, closed form
-// (trigonometric eigenvalues, then the widest cross product of two rows of
-// A - lambda I). Empty if the smallest eigenvalue is not clearly separated.
+// Smallest eigenvalue of a symmetric positive semi-definite 3x3 matrix:
+// Newton on its characteristic cubic p(l) = l^3 - c2 l^2 + c1 l - c0 from
+// l = 0. p is increasing and concave on [0, l_min], so the iterates rise
+// monotonically to l_min without overshooting (no trigonometry needed).
+double smallest_eigenvalue(const Eigen::Matrix3d& a) {
+  const double c2 = a.trace();
+  const double c1 = a(0, 0) * a(1, 1) + a(0, 0) * a(2, 2) + a(1, 1) * a(2, 2) - a(0, 1) * a(0, 1) -
+                    a(0, 2) * a(0, 2) - a(1, 2) * a(1, 2);
+  const double c0 = a.determinant();
+  double l = 0.0;
+  for (int i = 0; i < 32; ++i) {
+    const double p = ((l - c2) * l + c1) * l - c0;
+    const double slope = (3.0 * l - 2.0 * c2) * l + c1;
+    if (!(slope > 0.0)) break;
+    const double step = -p / slope;
+    l += step;
+    if (!(step > 1e-12 * c2)) break;
+  }
+  return l;
+}
+
+// Unit eigenvector of the smallest eigenvalue: the widest cross product of two
+// rows of A - l_min I. Empty when that eigenvalue is not simple (a line or a blob).
 std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a) {
-  const double off = a(0, 1) * a(0, 1) + a(0, 2) * a(0, 2) + a(1, 2) * a(1, 2);
-  const double q = a.trace() / 3.0;
-  const Eigen::Matrix3d shifted = a - q * Eigen::Matrix3d::Identity();
-  const double p = std::sqrt((shifted.diagonal().squaredNorm() + 2.0 * off) / 6.0);
-  if (!(p > 0.0)) return std::nullopt;
-  const double r = std::clamp((shifted / p).determinant() / 2.0, -1.0, 1.0);
-  const double phi = std::acos(r) / 3.0;
-  const double largest = q + 2.0 * p * std::cos(phi);
-  const double smallest = q + 2.0 * p * std::cos(phi + 2.0 * std::numbers::pi / 3.0);
-  const double middle = 3.0 * q - largest - smallest;
-  if (!(middle - smallest > 1e-9 * (largest - smallest))) return std::nullopt;
-  const Eigen::Matrix3d b = a - smallest * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d b = a - smallest_eigenvalue(a) * Eigen::Matrix3d::Identity();
   const std::array<Eigen::Vector3d, 3> candidates{b.row(0).cross(b.row(1)), b.row(0).cross(b.row(2)),
                                                   b.row(1).cross(b.row(2))};
   const auto widest = std::max_element(candidates.begin(), candidates.end(),
                                        [](const auto& x, const auto& y) { return x.squaredNorm() < y.squaredNorm(); });
-  if (!(widest->squaredNorm() > 0.0)) return std::nullopt;
+  const double scale = b.squaredNorm();
+  if (!(widest->squaredNorm() > 1e-12 * scale * scale)) return std::nullopt;
   return widest->normalized();
 }
 
