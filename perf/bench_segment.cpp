@@ -22,6 +22,8 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include "lccp/process.hpp"
+
 #include "lccp/config.hpp"
 #include "lccp/core/lccp.hpp"
 #include "lccp/error.hpp"
@@ -323,6 +325,7 @@ int main(int argc, char** argv) {
         options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     const tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, threads);
     lccp::perf::quiet_pcl_console();
+    lccp::keep_freed_memory_for_next_frames();  // as lccp's main does; applies to PCL too
 
     const fs::path dir = frames_directory(options);
     const std::vector<Frame> frames = load_frames(dir, options);

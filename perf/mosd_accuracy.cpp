@@ -23,6 +23,8 @@
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include "lccp/process.hpp"
+
 #include "lccp/config.hpp"
 #include "lccp/core/lccp.hpp"
 #include "lccp/error.hpp"
@@ -516,6 +518,7 @@ int main(int argc, char** argv) {
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     const tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, threads);
     lccp::perf::quiet_pcl_console();
+    lccp::keep_freed_memory_for_next_frames();  // as lccp's main does; applies to PCL too
 
     std::string config_source;
     lccp::LccpConfig config = resolve_config(config_name, config_source);

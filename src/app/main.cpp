@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "lccp/error.hpp"
+#include "lccp/process.hpp"
 
 int main(int argc, char** argv) {
   CLI::App cli{"LCCP Stream: object and part segmentation of depth data (Locally Convex Connected Patches)"};
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
     return cli.exit(e);
   }
   spdlog::set_level(spdlog::level::from_str(log_level));
+  lccp::keep_freed_memory_for_next_frames();
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0) {
     thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <algorithm>
 
+#include <tbb/parallel_for.h>
+
 namespace lccp::detail {
 
 CellKeys::CellKeys(const Cell& min_cell, const Cell& max_cell) : origin_(min_cell - 1) {
@@ -17,26 +19,45 @@ CellKeys::CellKeys(const Cell& min_cell, const Cell& max_cell) : origin_(min_cel
   }
 }
 
-void radix_sort(std::vector<KeyedIndex>& items, int key_bits) {
+PackedKeys packed_keys(const CellKeys& keys, std::size_t item_count) {
+  return {std::max(1, static_cast<int>(std::bit_width(item_count))), keys.key_bits()};
+}
+
+void radix_sort(std::vector<std::uint64_t>& values, const PackedKeys& packing) {
   // As few passes as possible with digits of at most 12 bits (counts stay in L1).
   constexpr int kMaxDigitBits = 12;
-  const int passes = (key_bits + kMaxDigitBits - 1) / kMaxDigitBits;
-  if (passes == 0) return;
-  const int digit_bits = (key_bits + passes - 1) / passes;
-  const std::uint64_t mask = (std::uint64_t{1} << digit_bits) - 1;
-  std::vector<KeyedIndex> buffer(items.size());
-  std::vector<std::uint32_t> counts(std::size_t{1} << digit_bits);
-  for (int shift = 0; shift < key_bits; shift += digit_bits) {
-    std::fill(counts.begin(), counts.end(), 0u);
-    for (const auto& item : items) ++counts[(item.key >> shift) & mask];
+  constexpr std::size_t kBlock = std::size_t{1} << 14;
+  const int passes = (packing.key_bits + kMaxDigitBits - 1) / kMaxDigitBits;
+  if (passes == 0 || values.size() < 2) return;
+  const int digit_bits = (packing.key_bits + passes - 1) / passes;
+  const std::size_t buckets = std::size_t{1} << digit_bits;
+  const std::size_t blocks = (values.size() + kBlock - 1) / kBlock;
+  std::vector<std::uint64_t> buffer(values.size());
+  std::vector<std::uint32_t> offsets(blocks * buckets);  // per block, per digit
+  for (int pass = 0; pass < passes; ++pass) {
+    const int shift = packing.index_bits + pass * digit_bits;
+    const auto digit = [&](std::uint64_t v) { return (v >> shift) & (buckets - 1); };
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      std::uint32_t* count = offsets.data() + b * buckets;
+      std::fill(count, count + buckets, 0u);
+      for (std::size_t i = b * kBlock; i < std::min(values.size(), (b + 1) * kBlock); ++i) ++count[digit(values[i])];
+    });
+    // Exclusive prefix in (digit, block) order keeps the sort stable.
     std::uint32_t running = 0;
-    for (auto& count : counts) {
-      const std::uint32_t c = count;
-      count = running;
-      running += c;
+    for (std::size_t d = 0; d < buckets; ++d) {
+      for (std::size_t b = 0; b < blocks; ++b) {
+        const std::uint32_t c = offsets[b * buckets + d];
+        offsets[b * buckets + d] = running;
+        running += c;
+      }
     }
-    for (const auto& item : items) buffer[counts[(item.key >> shift) & mask]++] = item;
-    items.swap(buffer);
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      std::uint32_t* next = offsets.data() + b * buckets;
+      for (std::size_t i = b * kBlock; i < std::min(values.size(), (b + 1) * kBlock); ++i) {
+        buffer[next[digit(values[i])]++] = values[i];
+      }
+    });
+    values.swap(buffer);
   }
 }
 

@@ -1,7 +1,6 @@
 #pragma once
 // Internal: integer grid cells packed into sortable 64-bit keys, and a stable
 // radix sort. Shared by voxelization and seeding.
-#include <array>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -39,13 +38,24 @@ class CellKeys {
   bool fits_ = true;
 };
 
-struct KeyedIndex {
-  std::uint64_t key;
-  std::uint32_t index;
+// An item's cell key and its index packed into one sortable value,
+// key << index_bits | index: sorting by key keeps equal keys in index order.
+struct PackedKeys {
+  int index_bits = 0;
+  int key_bits = 0;
+
+  bool fits() const { return index_bits + key_bits <= 64; }
+  std::uint64_t pack(std::uint64_t key, std::uint32_t index) const { return key << index_bits | index; }
+  std::uint64_t key(std::uint64_t packed) const { return packed >> index_bits; }
+  std::uint32_t index(std::uint64_t packed) const {
+    return static_cast<std::uint32_t>(packed & ((std::uint64_t{1} << index_bits) - 1));
+  }
 };
 
-// Stable LSD radix sort on the low `key_bits` bits of the keys: equal keys keep
-// their input order, so the result does not depend on threads or timing.
-void radix_sort(std::vector<KeyedIndex>& items, int key_bits);
+PackedKeys packed_keys(const CellKeys& keys, std::size_t item_count);
+
+// Stable LSD radix sort on the key bits of packed values, in parallel over
+// fixed-size blocks (a stable sort has one result, whatever the threads).
+void radix_sort(std::vector<std::uint64_t>& values, const PackedKeys& packing);
 
 }  // namespace lccp::detail

@@ -14,7 +14,6 @@ namespace lccp {
 namespace {
 
 using detail::Cell;
-using detail::KeyedIndex;
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr float kUnreached = std::numeric_limits<float>::infinity();
@@ -29,21 +28,23 @@ struct SeedCells {
 };
 
 SeedCells group_by_seed_cell(const std::vector<Cell>& cell_of_voxel, const detail::CellKeys& keys) {
-  SeedCells groups;
-  std::vector<KeyedIndex> items(cell_of_voxel.size());
+  const detail::PackedKeys packing = detail::packed_keys(keys, cell_of_voxel.size());
+  std::vector<std::uint64_t> values(cell_of_voxel.size());
   for (std::size_t v = 0; v < cell_of_voxel.size(); ++v) {
-    items[v] = {keys.key(cell_of_voxel[v]), static_cast<std::uint32_t>(v)};
+    values[v] = packing.pack(keys.key(cell_of_voxel[v]), static_cast<std::uint32_t>(v));
   }
-  detail::radix_sort(items, keys.key_bits());
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    if (i == 0 || items[i].key != items[i - 1].key) {
-      groups.keys.push_back(items[i].key);
-      groups.cells.push_back(cell_of_voxel[items[i].index]);
+  detail::radix_sort(values, packing);
+  SeedCells groups;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::uint64_t key = packing.key(values[i]);
+    if (groups.keys.empty() || key != groups.keys.back()) {
+      groups.keys.push_back(key);
+      groups.cells.push_back(cell_of_voxel[packing.index(values[i])]);
       groups.voxels.offsets.push_back(static_cast<std::uint32_t>(i));
     }
-    groups.voxels.items.push_back(items[i].index);
+    groups.voxels.items.push_back(packing.index(values[i]));
   }
-  groups.voxels.offsets.push_back(static_cast<std::uint32_t>(items.size()));
+  groups.voxels.offsets.push_back(static_cast<std::uint32_t>(values.size()));
   return groups;
 }
 
@@ -211,11 +212,13 @@ class Grower {
     const std::uint32_t current = owner_[v];
     std::uint32_t best = kNone;
     float best_distance = kUnreached;
-    std::array<std::uint32_t, 26> tried;
+    std::array<std::uint32_t, 26> tried;  // owners already measured; runs of one owner are common
     std::size_t tried_count = 0;
+    std::uint32_t last = current;
     for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
       const std::uint32_t k = owner_[*w];
-      if (k == kNone || k == current) continue;
+      if (k == kNone || k == last || k == current) continue;
+      last = k;
       if (std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) continue;
       tried[tried_count++] = k;
       const float d = distance(v, centres_[k]);

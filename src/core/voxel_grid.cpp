@@ -18,41 +18,52 @@ namespace {
 
 using detail::Cell;
 using detail::CellKeys;
-using detail::KeyedIndex;
+using detail::PackedKeys;
 
-constexpr float kMaxCellCoordinate = 1 << 30;
+constexpr float kMaxCellCoordinate = 1 << 30;  // |cell| beyond this: refuse the cloud
 const Cell kInvalidCell = Cell::Constant(std::numeric_limits<int>::min());
 
 struct CellBounds {
-  Cell min = Cell::Constant(std::numeric_limits<int>::max());
-  Cell max = Cell::Constant(std::numeric_limits<int>::min());
+  std::array<int, 3> min{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
+                         std::numeric_limits<int>::max()};
+  std::array<int, 3> max{std::numeric_limits<int>::min(), std::numeric_limits<int>::min(),
+                         std::numeric_limits<int>::min()};
   std::size_t count = 0;
   bool behind_sensor = false;  // a finite point at z <= 0 (camera binning impossible)
 
   void add(const Cell& c) {
-    min = min.min(c);
-    max = max.max(c);
+    for (int a = 0; a < 3; ++a) {
+      min[a] = std::min(min[a], c[a]);
+      max[a] = std::max(max[a], c[a]);
+    }
     ++count;
   }
   void join(const CellBounds& other) {
-    min = min.min(other.min);
-    max = max.max(other.max);
+    for (int a = 0; a < 3; ++a) {
+      min[a] = std::min(min[a], other.min[a]);
+      max[a] = std::max(max[a], other.max[a]);
+    }
     count += other.count;
     behind_sensor = behind_sensor || other.behind_sensor;
   }
 };
 
+int floor_to_int(float x) {
+  if (!(std::abs(x) < kMaxCellCoordinate)) throw Error("the cloud spans too far for its voxel size");
+  const int truncated = static_cast<int>(x);
+  return truncated - (x < static_cast<float>(truncated));
+}
+
 // The cell of a point: cubes of size v, or cells of size v in (x/z, y/z, ln z)
 // (PCL's single camera transform), which grow with depth.
 Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning) {
-  Eigen::Array3f q = p.array() * inverse_size;
   if (binning == Binning::camera) {
     const float inverse_z = inverse_size / p.z();
-    q = Eigen::Array3f(p.x() * inverse_z, p.y() * inverse_z, std::log(p.z()) * inverse_size);
+    return Cell(floor_to_int(p.x() * inverse_z), floor_to_int(p.y() * inverse_z),
+                floor_to_int(std::log(p.z()) * inverse_size));
   }
-  if ((q.abs() > kMaxCellCoordinate).any()) throw Error("the cloud spans too far for its voxel size");
-  const Cell truncated = q.cast<int>();
-  return truncated - (q < truncated.cast<float>()).cast<int>();  // floor
+  return Cell(floor_to_int(p.x() * inverse_size), floor_to_int(p.y() * inverse_size),
+              floor_to_int(p.z() * inverse_size));
 }
 
 // Cells of every point (kInvalidCell where non-finite) and their bounds, in one pass.
@@ -81,31 +92,45 @@ CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binn
       });
 }
 
-// Finite points sorted by cell key; points of one cell stay in index order.
-std::vector<KeyedIndex> sorted_point_keys(const std::vector<Cell>& cells, const CellKeys& keys,
-                                          std::size_t finite_count) {
-  std::vector<KeyedIndex> items;
-  items.reserve(finite_count);
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    if (cells[i].x() != kInvalidCell.x()) items.push_back({keys.key(cells[i]), static_cast<std::uint32_t>(i)});
-  }
-  detail::radix_sort(items, keys.key_bits());
-  return items;
+// Finite points as packed (cell key, point index), sorted by key; points of
+// one cell stay in index order. Compacted in parallel over fixed blocks.
+std::vector<std::uint64_t> sorted_point_keys(const std::vector<Cell>& cells, const CellKeys& keys,
+                                             const PackedKeys& packing, std::size_t finite_count) {
+  constexpr std::size_t kBlock = std::size_t{1} << 14;
+  const std::size_t blocks = (cells.size() + kBlock - 1) / kBlock;
+  const auto is_valid = [&](std::size_t i) { return cells[i].x() != kInvalidCell.x(); };
+  std::vector<std::size_t> first_slot(blocks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(cells.size(), (b + 1) * kBlock); ++i) first_slot[b + 1] += is_valid(i);
+  });
+  for (std::size_t b = 0; b < blocks; ++b) first_slot[b + 1] += first_slot[b];
+  std::vector<std::uint64_t> values(finite_count);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t slot = first_slot[b];
+    for (std::size_t i = b * kBlock; i < std::min(cells.size(), (b + 1) * kBlock); ++i) {
+      if (is_valid(i)) values[slot++] = packing.pack(keys.key(cells[i]), static_cast<std::uint32_t>(i));
+    }
+  });
+  detail::radix_sort(values, packing);
+  return values;
 }
 
 // Runs of equal keys become voxels: their keys and member point rows.
-void group_into_voxels(const std::vector<KeyedIndex>& items, std::vector<std::uint64_t>& voxel_keys,
-                       CompressedRows& points) {
-  points.items.resize(items.size());
+void group_into_voxels(const std::vector<std::uint64_t>& values, const PackedKeys& packing,
+                       std::vector<std::uint64_t>& voxel_keys, CompressedRows& points) {
+  points.items.resize(values.size());
   points.offsets.clear();
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    if (i == 0 || items[i].key != items[i - 1].key) {
-      voxel_keys.push_back(items[i].key);
+  std::uint64_t previous = ~std::uint64_t{0};
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::uint64_t key = packing.key(values[i]);
+    if (key != previous) {
+      voxel_keys.push_back(key);
       points.offsets.push_back(static_cast<std::uint32_t>(i));
+      previous = key;
     }
-    points.items[i] = items[i].index;
+    points.items[i] = packing.index(values[i]);
   }
-  points.offsets.push_back(static_cast<std::uint32_t>(items.size()));
+  points.offsets.push_back(static_cast<std::uint32_t>(values.size()));
 }
 
 Eigen::Vector3f unpack_rgb(std::uint32_t rgb) {
@@ -210,12 +235,13 @@ VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config) {
   }
   if (bounds.behind_sensor) bounds = compute_cells(cloud, config.voxel_size_m, Binning::euclidean, cells);
   if (bounds.count == 0) throw Error("the cloud has no finite points");
-  const CellKeys keys(bounds.min, bounds.max);
-  if (!keys.fits()) throw Error("the cloud spans too many voxels for its voxel size");
+  const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
+  const PackedKeys packing = detail::packed_keys(keys, cloud.size());
+  if (!keys.fits() || !packing.fits()) throw Error("the cloud spans too many voxels for its voxel size");
 
   VoxelGrid grid;
   std::vector<std::uint64_t> voxel_keys;
-  group_into_voxels(sorted_point_keys(cells, keys, bounds.count), voxel_keys, grid.points);
+  group_into_voxels(sorted_point_keys(cells, keys, packing, bounds.count), packing, voxel_keys, grid.points);
   compute_voxel_means(cloud, grid);
   find_neighbors(voxel_keys, keys, grid.neighbors);
   return grid;
