@@ -209,18 +209,21 @@ class Grower {
   // The nearest supervoxel among v's neighbours' other than v's own (ties:
   // smaller id), with its distance; kNone if every neighbour is v's own or free.
   std::pair<std::uint32_t, float> nearest_other(std::size_t v) const {
+    // Gather the neighbours' foreign owners without branching (boundaries make
+    // branches unpredictable), then measure each distinct one once.
     const std::uint32_t current = owner_[v];
-    std::uint32_t best = kNone;
-    float best_distance = kUnreached;
-    std::array<std::uint32_t, 26> tried;  // owners already measured; runs of one owner are common
-    std::size_t tried_count = 0;
-    std::uint32_t last = current;
+    std::array<std::uint32_t, 26> foreign;
+    std::size_t count = 0;
     for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
       const std::uint32_t k = owner_[*w];
-      if (k == kNone || k == last || k == current) continue;
-      last = k;
-      if (std::find(tried.begin(), tried.begin() + tried_count, k) != tried.begin() + tried_count) continue;
-      tried[tried_count++] = k;
+      foreign[count] = k;
+      count += (k != current) & (k != kNone);
+    }
+    std::uint32_t best = kNone;
+    float best_distance = kUnreached;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t k = foreign[i];
+      if (std::find(foreign.begin(), foreign.begin() + i, k) != foreign.begin() + i) continue;
       const float d = distance(v, centres_[k]);
       if (d < best_distance || (d == best_distance && k < best)) {
         best = k;
