@@ -1,0 +1,25 @@
+#pragma once
+// Internal: least-squares plane fitting from accumulated moments, shared by
+// voxel normals and supervoxel patch normals.
+#include <optional>
+
+#include <Eigen/Core>
+
+namespace lccp::detail {
+
+// Zeroth, first and second moments of a weighted set of points:
+// (n, sx, sy, sz, sxx, sxy, sxz, syy, syz, szz).
+using Moments = Eigen::Matrix<double, 10, 1>;
+
+Moments moments_of(const Eigen::Vector3f& point);
+Eigen::Matrix3d covariance_of(const Moments& m);
+
+// Unit eigenvector of the smallest eigenvalue of a symmetric positive
+// semi-definite 3x3 matrix; empty when that eigenvalue is not simple.
+std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a);
+
+// Normal of the best-fit plane through the points, oriented to agree with
+// `reference`; empty for fewer than three points or a degenerate set.
+std::optional<Eigen::Vector3f> plane_normal(const Moments& m, const Eigen::Vector3f& reference);
+
+}  // namespace lccp::detail
