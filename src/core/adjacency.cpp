@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+
+#include "parallel.hpp"
 
 namespace lccp {
 
@@ -14,7 +14,7 @@ std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid, const Supervoxels&
   const auto& absorbed = supervoxels.absorbed;
   // Each thread collects (a, b) pairs, a < b, packed into 64 bits.
   tbb::enumerable_thread_specific<std::vector<std::uint64_t>> local_pairs;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.size()), [&](const auto& range) {
+  detail::parallel_ranges(grid.size(), [&](const auto& range) {
     auto& pairs = local_pairs.local();
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
       if (absorbed[v]) continue;

@@ -2,14 +2,13 @@
 
 #include <chrono>
 
-#include <tbb/parallel_for.h>
-
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
 #include "lccp/core/normals.hpp"
 #include "lccp/core/segments.hpp"
 #include "lccp/core/supervoxels.hpp"
 #include "lccp/core/voxel_grid.hpp"
+#include "parallel.hpp"
 
 namespace lccp {
 namespace {
@@ -31,7 +30,7 @@ class LapTimer {
 Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
                     const std::vector<std::uint32_t>& segment_of_supervoxel) {
   Labels labels(grid.voxel_of_point.size(), 0);
-  tbb::parallel_for(std::size_t{0}, labels.size(), [&](std::size_t i) {
+  detail::parallel_for_each_index(labels.size(), [&](std::size_t i) {
     const std::uint32_t v = grid.voxel_of_point[i];
     if (v != kNoVoxel) labels[i] = segment_of_supervoxel[supervoxels.supervoxel_of_voxel[v]];
   });

@@ -1,8 +1,6 @@
 #include "lccp/core/normals.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
+#include "parallel.hpp"
 #include "plane_fit.hpp"
 
 namespace lccp {
@@ -10,16 +8,9 @@ namespace {
 
 using detail::Moments;
 
-template <typename Body>
-void for_each_voxel(std::size_t n, Body body) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
-    for (std::size_t v = range.begin(); v < range.end(); ++v) body(v);
-  });
-}
-
 std::vector<Moments> centroid_moments(const VoxelGrid& grid) {
   std::vector<Moments> moments(grid.size());
-  for_each_voxel(grid.size(), [&](std::size_t v) { moments[v] = detail::moments_of(grid.centroids[v]); });
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { moments[v] = detail::moments_of(grid.centroids[v]); });
   return moments;
 }
 
@@ -27,13 +18,13 @@ std::vector<Moments> centroid_moments(const VoxelGrid& grid) {
 // and all of N[u]. As sums: m(v) + sum_{u in N[v]} (2 m(u) + sum_{w in N(u)} m(w)).
 std::vector<Moments> two_ring_moments(const VoxelGrid& grid, const std::vector<Moments>& own) {
   std::vector<Moments> one_ring(grid.size());
-  for_each_voxel(grid.size(), [&](std::size_t u) {
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t u) {
     Moments m = 2.0 * own[u];
     for (const std::uint32_t* w = grid.neighbors.begin(u); w != grid.neighbors.end(u); ++w) m += own[*w];
     one_ring[u] = m;
   });
   std::vector<Moments> two_ring(grid.size());
-  for_each_voxel(grid.size(), [&](std::size_t v) {
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
     Moments m = own[v] + one_ring[v];
     for (const std::uint32_t* u = grid.neighbors.begin(v); u != grid.neighbors.end(v); ++u) m += one_ring[*u];
     two_ring[v] = m;
@@ -53,7 +44,7 @@ Eigen::Vector3f pca_normal(const Moments& m, const Eigen::Vector3f& centroid) {
 // flipped); voxels without a valid one face the sensor.
 std::vector<Eigen::Vector3f> given_normals(const VoxelGrid& grid) {
   std::vector<Eigen::Vector3f> normals = grid.mean_normals;
-  for_each_voxel(grid.size(), [&](std::size_t v) {
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
     if (!(normals[v].squaredNorm() > 0.5f)) normals[v] = -grid.centroids[v].normalized();
   });
   return normals;
@@ -65,7 +56,7 @@ std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid) {
   if (!grid.mean_normals.empty()) return given_normals(grid);
   const std::vector<Moments> neighbourhoods = two_ring_moments(grid, centroid_moments(grid));
   std::vector<Eigen::Vector3f> normals(grid.size());
-  for_each_voxel(grid.size(), [&](std::size_t v) { normals[v] = pca_normal(neighbourhoods[v], grid.centroids[v]); });
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { normals[v] = pca_normal(neighbourhoods[v], grid.centroids[v]); });
   return normals;
 }
 

@@ -1,6 +1,5 @@
 #pragma once
-// Internal: least-squares plane fitting from accumulated moments, shared by
-// voxel normals and supervoxel patch normals.
+// Internal: least-squares plane fitting from accumulated moments (voxel normals).
 #include <optional>
 
 #include <Eigen/Core>

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "cell_keys.hpp"
+#include "parallel.hpp"
 
 namespace lccp {
 namespace {
@@ -135,13 +136,11 @@ class Grower {
   void grow_one_ring() {
     std::vector<std::uint32_t> next(owner_.size());
     std::vector<float> next_claim(owner_.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
-      for (std::size_t v = range.begin(); v < range.end(); ++v) {
-        const auto [k, d] = nearest_other(v);
-        const bool steal = k != kNone && d < claim_[v];
-        next[v] = steal ? k : owner_[v];
-        next_claim[v] = steal ? d : claim_[v];
-      }
+    detail::parallel_for_each_index(owner_.size(), [&](std::size_t v) {
+      const auto [k, d] = nearest_other(v);
+      const bool steal = k != kNone && d < claim_[v];
+      next[v] = steal ? k : owner_[v];
+      next_claim[v] = steal ? d : claim_[v];
     });
     // Members move in voxel order, so the sums do not depend on threads.
     for (std::uint32_t v = 0; v < owner_.size(); ++v) {
@@ -160,12 +159,10 @@ class Grower {
   void absorb_unreached() {
     for (bool changed = true; changed;) {
       std::vector<std::uint32_t> next = owner_;
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owner_.size()), [&](const auto& range) {
-        for (std::size_t v = range.begin(); v < range.end(); ++v) {
-          if (owner_[v] != kNone) continue;
-          next[v] = nearest_other(v).first;
-          absorbed_[v] = next[v] != kNone;
-        }
+      detail::parallel_for_each_index(owner_.size(), [&](std::size_t v) {
+        if (owner_[v] != kNone) return;
+        next[v] = nearest_other(v).first;
+        absorbed_[v] = next[v] != kNone;
       });
       changed = next != owner_;
       owner_.swap(next);

@@ -11,6 +11,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include "cell_keys.hpp"
+#include "parallel.hpp"
 #include "lccp/error.hpp"
 
 namespace lccp {
@@ -89,7 +90,8 @@ CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binn
       [](CellBounds a, const CellBounds& b) {
         a.join(b);
         return a;
-      });
+      },
+      tbb::static_partitioner());
 }
 
 // Finite points as packed (cell key, point index), sorted by key; points of
@@ -145,7 +147,7 @@ void compute_voxel_means(const PointCloud& cloud, VoxelGrid& grid) {
   grid.colors.assign(n, Eigen::Vector3f::Zero());
   if (cloud.has_normals()) grid.mean_normals.resize(n);
   grid.voxel_of_point.assign(cloud.size(), kNoVoxel);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
+  detail::parallel_ranges(n, [&](const auto& range) {
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
       Eigen::Vector3d xyz = Eigen::Vector3d::Zero(), rgb = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
       for (const std::uint32_t* p = grid.points.begin(v); p != grid.points.end(v); ++p) {
@@ -175,7 +177,7 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
   for (int dx = -1, r = 0; dx <= 1; ++dx) {
     for (int dy = -1; dy <= 1; ++dy) row_offsets[r++] = keys.offset(dx, dy, 0);
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& range) {
+  detail::parallel_ranges(n, [&](const auto& range) {
     std::array<std::size_t, 9> cursor;
     for (std::size_t r = 0; r < 9; ++r) {
       const std::uint64_t first = voxel_keys[range.begin()] + row_offsets[r] - 1;
@@ -198,7 +200,7 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
   neighbors.offsets[0] = 0;
   for (std::size_t v = 0; v < n; ++v) neighbors.offsets[v + 1] = neighbors.offsets[v] + counts[v + 1];
   neighbors.items.resize(neighbors.offsets[n]);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
+  detail::parallel_ranges(n, [&](const auto& range) {
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
       std::copy_n(slots.get() + v * kMaxNeighbors, neighbors.count(v), neighbors.items.data() + neighbors.offsets[v]);
     }
