@@ -134,8 +134,10 @@ class Grower {
   // if that is closer than the distance at which its owner claimed it (VCCS
   // steals only then); then the centres move.
   void grow_one_ring() {
-    std::vector<std::uint32_t> next(owner_.size());
-    std::vector<float> next_claim(owner_.size());
+    std::vector<std::uint32_t>& next = next_owner_;
+    std::vector<float>& next_claim = next_claim_;
+    next.resize(owner_.size());
+    next_claim.resize(owner_.size());
     detail::parallel_for_each_index(owner_.size(), [&](std::size_t v) {
       const auto [k, d] = nearest_other(v);
       const bool steal = k != kNone && d < claim_[v];
@@ -260,6 +262,8 @@ class Grower {
   std::vector<std::uint32_t> owner_;
   std::vector<float> claim_;           // distance at which the owner claimed the voxel (VCCS keeps it)
   std::vector<std::uint8_t> absorbed_; // joined after growth: labelled, but no part of the patch
+  std::vector<std::uint32_t> next_owner_;  // the pass being computed (kept between passes)
+  std::vector<float> next_claim_;
   std::vector<MemberSums> sums_;
   std::vector<Centre> centres_;
 };
