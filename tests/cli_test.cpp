@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "test_files.hpp"
 #include "lccp/cloud.hpp"
 #include "lccp/io/cloud_io.hpp"
 
@@ -28,6 +29,9 @@ extern char** environ;
 
 namespace lccp {
 namespace {
+
+using test::read_bytes;
+using test::write_bytes;
 
 namespace fs = std::filesystem;
 
@@ -46,16 +50,7 @@ struct RunResult {
   std::string err;
 };
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  ASSERT_TRUE(out.good()) << path;
-}
 
 // Runs `timeout 60 lccp ARGS...` without a shell, stdin from /dev/null and
 // stdout/stderr into files under `capture_dir`. timeout(1) re-raises a signal

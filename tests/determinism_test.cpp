@@ -201,29 +201,36 @@ void expect_valid_labels(const PointCloud& cloud, const SegmentationResult& r) {
   EXPECT_GE(r.voxel_count, r.supervoxel_count);
 }
 
-class MosdScene : public ::testing::TestWithParam<std::string> {};
+// A real scene and its WOv floor: the value measured at P1 less about 0.015, so a
+// change that costs accuracy fails here (floating-point differences across compilers
+// move these scores by far less).
+struct SceneFloor {
+  std::string name;
+  double wov_floor;
+};
+void PrintTo(const SceneFloor& s, std::ostream* os) { *os << s.name; }
+
+class MosdScene : public ::testing::TestWithParam<SceneFloor> {};
 
 TEST_P(MosdScene, LabelsDenseAndObjectWovAboveFloor) {
-  const LabelledCloud& lc = scene(GetParam());
+  const LabelledCloud& lc = scene(GetParam().name);
   ASSERT_TRUE(lc.labels.has_value()) << "the mOSD scenes carry a GT label field";
   const SegmentationResult r = LccpSegmenter(LccpConfig{}).segment(lc.cloud);  // P1
   expect_valid_labels(lc.cloud, r);
   const SegmentationScores s = score_segmentation(r.labels, *lc.labels, lc.cloud.points, LabelRange{0, 9});
-  // Floor 0.90 per scene (GUIDE: PCL's P1 reaches WOv 0.960 over the test split).
-  // Measured (P1, 2 cores, core at commit 16f20a1): mosd_test2 0.9862, mosd_test34 0.9188,
-  // mosd_test60 0.9451, mosd_test43 0.9385 (the first implementation gave 0.9872, 0.9094,
-  // 0.9376, 0.9521). test34 sits closest to the floor; tighten per scene, not globally.
-  EXPECT_GE(s.weighted_overlap, 0.90) << GetParam() << ": WOv " << s.weighted_overlap << ", tp " << s.true_positive
+  // Measured at P1: mosd_test2 0.9862, mosd_test34 0.9188, mosd_test60 0.9451, mosd_test43 0.9385.
+  EXPECT_GE(s.weighted_overlap, GetParam().wov_floor) << GetParam().name << ": WOv " << s.weighted_overlap << ", tp " << s.true_positive
                                       << ", fp " << s.false_positive << ", segments " << r.segment_count;
   RecordProperty("wov", std::to_string(s.weighted_overlap));
   std::printf("[ scores   ] %s: WOv %.4f tp %.4f fp %.4f fn %.4f Fos %.4f Fus %.4f ARI %.4f, %u voxels, %u supervoxels, %u segments\n",
-              GetParam().c_str(), s.weighted_overlap, s.true_positive, s.false_positive, s.false_negative,
+              GetParam().name.c_str(), s.weighted_overlap, s.true_positive, s.false_positive, s.false_negative,
               s.over_segmentation, s.under_segmentation, s.adjusted_rand_index, r.voxel_count, r.supervoxel_count,
               r.segment_count);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, MosdScene, ::testing::Values("mosd_test2", "mosd_test34", "mosd_test60", "mosd_test43"),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(Scenes, MosdScene, ::testing::Values(SceneFloor{"mosd_test2", 0.97}, SceneFloor{"mosd_test34", 0.90},
+                                           SceneFloor{"mosd_test60", 0.93}, SceneFloor{"mosd_test43", 0.92}),
+                         [](const auto& info) { return info.param.name; });
 
 // --- LCCP on synthetic scenes ------------------------------------------------------------
 

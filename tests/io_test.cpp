@@ -18,11 +18,15 @@
 #include <string>
 #include <vector>
 
+#include "test_files.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/cloud_io.hpp"
 
 namespace lccp {
 namespace {
+
+using test::read_bytes;
+using test::write_bytes;
 
 namespace fs = std::filesystem;
 
@@ -39,15 +43,7 @@ fs::path scratch_dir() {
   return dir;
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
 
 // Expects an lccp::Error whose message is one line containing every part.
 void expect_error(const std::function<void()>& action, std::initializer_list<std::string> parts) {

@@ -176,31 +176,29 @@ struct ConcaveCorner {
   int side(const Eigen::Vector3d& p) const { return p.y() < edge_point.y() ? 0 : 1; }
 };
 
-inline ConcaveCorner concave_corner(double edge_depth_m = 1.0, double leg_m = 0.10, double width_m = 0.20) {
+namespace detail {
+// Two 90 deg legs meeting at the line through (0, 0, edge_depth_m) along x, going
+// along (0, -1, toward)/sqrt2 and (0, 1, toward)/sqrt2 with toward = -1 (to the camera) or +1.
+inline ConcaveCorner corner(double edge_depth_m, double leg_m, double width_m, double toward) {
   const double s = std::numbers::sqrt2 / 2;
   ConcaveCorner c;
   c.edge_point = {0, 0, edge_depth_m};
   c.edge_direction = Eigen::Vector3d::UnitX();
   const Eigen::Vector3d along_x(width_m, 0, 0);
   const Eigen::Vector3d start = c.edge_point - 0.5 * along_x;
-  c.wall = Rect{start, along_x, Eigen::Vector3d(0, -s, -s) * leg_m};
-  c.table = Rect{start, along_x, Eigen::Vector3d(0, s, -s) * leg_m};
+  c.wall = Rect{start, along_x, Eigen::Vector3d(0, -s, toward * s) * leg_m};
+  c.table = Rect{start, along_x, Eigen::Vector3d(0, s, toward * s) * leg_m};
   return c;
+}
+}  // namespace detail
+
+inline ConcaveCorner concave_corner(double edge_depth_m = 1.0, double leg_m = 0.10, double width_m = 0.20) {
+  return detail::corner(edge_depth_m, leg_m, width_m, -1.0);
 }
 
 // The convex counterpart: a 90 deg ridge pointing at the camera (the L seen from behind).
-// The edge is the line through (0, 0, edge_depth_m) along x; the legs go away from the
-// camera along (0, -1, 1)/sqrt2 and (0, 1, 1)/sqrt2.
 inline ConcaveCorner convex_ridge(double edge_depth_m = 0.9, double leg_m = 0.10, double width_m = 0.20) {
-  const double s = std::numbers::sqrt2 / 2;
-  ConcaveCorner c;
-  c.edge_point = {0, 0, edge_depth_m};
-  c.edge_direction = Eigen::Vector3d::UnitX();
-  const Eigen::Vector3d along_x(width_m, 0, 0);
-  const Eigen::Vector3d start = c.edge_point - 0.5 * along_x;
-  c.wall = Rect{start, along_x, Eigen::Vector3d(0, -s, s) * leg_m};
-  c.table = Rect{start, along_x, Eigen::Vector3d(0, s, s) * leg_m};
-  return c;
+  return detail::corner(edge_depth_m, leg_m, width_m, +1.0);
 }
 
 // A camera-from-world transform for a camera at `eye` looking at `target`, with the
