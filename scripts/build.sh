@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Configures and builds into build/ (Release). Extra arguments go to cmake.
+# Configures and builds everything into build/ (Release). Arguments are cmake
+# configure options, e.g. -DLCCP_BUILD_TESTS=OFF.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null

@@ -3,5 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh -DLCCP_BUILD_TESTS=ON
+bash scripts/build.sh -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF
 ctest --test-dir build --output-on-failure -j"$(nproc)"
