@@ -339,18 +339,28 @@ TEST(VoxelizeCamera, EuclideanCellsDoNotGrowWithDepth) {
   EXPECT_LE(far, 21u);
 }
 
-TEST(EffectiveBinning, AutomaticDependsOnOrganisation) {
+TEST(VoxelGridBinning, AutomaticDependsOnOrganisationAndSensorSide) {
   PointCloud organized;
   organized.width = 2;
   organized.height = 2;
   organized.points.assign(4, Eigen::Vector3f(0, 0, 1));
   const PointCloud flat = test::unorganized(std::vector<Eigen::Vector3f>(4, Eigen::Vector3f(0, 0, 1)));
-  EXPECT_EQ(effective_binning(organized, Binning::automatic), Binning::camera);
-  EXPECT_EQ(effective_binning(flat, Binning::automatic), Binning::euclidean);
-  EXPECT_EQ(effective_binning(organized, Binning::euclidean), Binning::euclidean);
-  EXPECT_EQ(effective_binning(flat, Binning::camera), Binning::camera);
-  EXPECT_EQ(effective_binning(organized, Binning::camera), Binning::camera);
-  EXPECT_EQ(effective_binning(flat, Binning::euclidean), Binning::euclidean);
+  const auto binning_used = [](const PointCloud& cloud, Binning requested) {
+    VoxelConfig config;
+    config.binning = requested;
+    return voxelize(cloud, config).binning;
+  };
+  EXPECT_EQ(binning_used(organized, Binning::automatic), Binning::camera);
+  EXPECT_EQ(binning_used(flat, Binning::automatic), Binning::euclidean);
+  EXPECT_EQ(binning_used(organized, Binning::euclidean), Binning::euclidean);
+  EXPECT_EQ(binning_used(flat, Binning::camera), Binning::camera);
+  EXPECT_EQ(binning_used(organized, Binning::camera), Binning::camera);
+  EXPECT_EQ(binning_used(flat, Binning::euclidean), Binning::euclidean);
+  // A point behind the sensor: automatic falls back to cubes, explicit camera is refused.
+  PointCloud behind = organized;
+  behind.points[3] = Eigen::Vector3f(0, 0, -1);
+  EXPECT_EQ(binning_used(behind, Binning::automatic), Binning::euclidean);
+  EXPECT_THROW(binning_used(behind, Binning::camera), Error);
 }
 
 TEST(VoxelizeCamera, AutomaticOnOrganizedCloudEqualsCamera) {

@@ -28,7 +28,6 @@ class CellKeys {
   std::uint64_t offset(int dx, int dy, int dz) const {
     return static_cast<std::uint64_t>((static_cast<std::int64_t>(dx) * extent_.y() + dy) * extent_.z() + dz);
   }
-  std::uint64_t row_length() const { return extent_.z(); }
   int key_bits() const { return key_bits_; }
 
  private:

@@ -209,22 +209,6 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
 
 }  // namespace
 
-Binning effective_binning(const PointCloud& cloud, Binning requested) {
-  if (requested != Binning::automatic) return requested;
-  if (!cloud.organized()) return Binning::euclidean;
-  // The camera transform needs every point in front of the sensor.
-  const bool all_in_front = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, cloud.size()), true,
-      [&](const auto& range, bool ok) {
-        for (std::size_t i = range.begin(); ok && i < range.end(); ++i) {
-          ok = !is_finite(cloud.points[i]) || cloud.points[i].z() > 0.0f;
-        }
-        return ok;
-      },
-      [](bool a, bool b) { return a && b; });
-  return all_in_front ? Binning::camera : Binning::euclidean;
-}
-
 VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config) {
   // Automatic binning tries the camera transform on organized clouds and falls
   // back to cubes if a point lies behind the sensor.
@@ -235,13 +219,17 @@ VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config) {
   if (bounds.behind_sensor && config.binning == Binning::camera) {
     throw Error("camera binning needs every point at z > 0; use binning: euclidean");
   }
-  if (bounds.behind_sensor) bounds = compute_cells(cloud, config.voxel_size_m, Binning::euclidean, cells);
+  if (bounds.behind_sensor) {
+    binning = Binning::euclidean;
+    bounds = compute_cells(cloud, config.voxel_size_m, binning, cells);
+  }
   if (bounds.count == 0) throw Error("the cloud has no finite points");
   const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
   const PackedKeys packing = detail::packed_keys(keys, cloud.size());
   if (!keys.fits() || !packing.fits()) throw Error("the cloud spans too many voxels for its voxel size");
 
   VoxelGrid grid;
+  grid.binning = binning;
   std::vector<std::uint64_t> voxel_keys;
   group_into_voxels(sorted_point_keys(cells, keys, packing, bounds.count), packing, voxel_keys, grid.points);
   compute_voxel_means(cloud, grid);

@@ -32,15 +32,15 @@ struct VoxelGrid {
   CompressedRows points;                     // member point indices per voxel, ascending
   CompressedRows neighbors;                  // 26-neighbourhood, self excluded, ascending
   std::vector<std::uint32_t> voxel_of_point; // per input point; kNoVoxel if not finite
+  Binning binning = Binning::euclidean;      // the binning used (automatic resolved)
 
   std::size_t size() const { return centroids.size(); }
 };
 
-// Throws lccp::Error when the cloud has no finite point or spans more cells
-// than the integer keys can hold.
+// Binning::automatic means camera cells for an organized cloud whose points all
+// lie in front of the sensor (z > 0), cubes otherwise. Throws lccp::Error when
+// the cloud has no finite point, when camera binning is asked for a point at
+// z <= 0, or when the cloud spans more cells than the integer keys can hold.
 VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config);
-
-// The binning actually used for this cloud (resolves Binning::automatic).
-Binning effective_binning(const PointCloud& cloud, Binning requested);
 
 }  // namespace lccp
