@@ -10,7 +10,7 @@ namespace lccp::detail {
 
 // Calls body(range) over [0, n) in parallel, one contiguous share per thread:
 // voxels and points that are neighbours in memory stay in one core's cache
-// (measured: growth 9.7 -> 7.2 ms on 2 threads against TBB's default split).
+// (perf/RESULTS.md: median growth 10.9 -> 9.9 ms on 2 threads against TBB's default split).
 template <typename RangeBody>
 void parallel_ranges(std::size_t n, RangeBody&& body) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), body, tbb::static_partitioner());
