@@ -25,7 +25,7 @@ struct ConfigOptions {
   std::vector<std::string> settings;
 
   void add_to(CLI::App& command);
-  LccpConfig resolve() const;  // defaults (P1) <- file <- settings, validated
+  LccpConfig resolve() const;  // defaults (P1) <- file <- settings
 };
 
 }  // namespace lccp::app

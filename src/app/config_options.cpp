@@ -11,8 +11,8 @@ void ConfigOptions::add_to(CLI::App& command) {
 LccpConfig ConfigOptions::resolve() const {
   LccpConfig config = file.empty() ? LccpConfig{} : load_config(file);
   for (const std::string& setting : settings) apply_setting(config, setting);
-  validate(config);
-  return config;
+  return config;  // LccpSegmenter validates it
+
 }
 
 }  // namespace lccp::app
