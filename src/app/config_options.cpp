@@ -12,7 +12,6 @@ LccpConfig ConfigOptions::resolve() const {
   LccpConfig config = file.empty() ? LccpConfig{} : load_config(file);
   for (const std::string& setting : settings) apply_setting(config, setting);
   return config;  // LccpSegmenter validates it
-
 }
 
 }  // namespace lccp::app
