@@ -42,19 +42,38 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
 LccpSegmenter::LccpSegmenter(const LccpConfig& config) : config_(config) { validate(config_); }
 
 SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const {
-  SegmentationResult result;
-  StageTimes& t = result.times;
+  StageTimes times;
+  return label(grow(voxelize_with_normals(cloud, times), times), times);
+}
+
+VoxelizedCloud LccpSegmenter::voxelize_with_normals(const PointCloud& cloud, StageTimes& times) const {
+  LapTimer timer;
+  VoxelizedCloud out;
+  out.grid = voxelize(cloud, config_.voxels);
+  times.voxelize_ms = timer.lap();
+  out.normals = estimate_voxel_normals(out.grid);
+  times.normals_ms = timer.lap();
+  return out;
+}
+
+GrownSupervoxels LccpSegmenter::grow(VoxelizedCloud voxels, StageTimes& times) const {
   LapTimer timer;
   const float v = config_.voxels.voxel_size_m;
+  const std::vector<std::uint32_t> seeds = select_seeds(voxels.grid, config_.supervoxels, v);
+  times.seeds_ms = timer.lap();
+  Supervoxels supervoxels = grow_supervoxels(voxels.grid, voxels.normals, seeds, config_.supervoxels, v);
+  times.growth_ms = timer.lap();
+  return {std::move(voxels), std::move(supervoxels)};
+}
 
-  const VoxelGrid grid = voxelize(cloud, config_.voxels);
-  t.voxelize_ms = timer.lap();
-  const std::vector<Eigen::Vector3f> normals = estimate_voxel_normals(grid);
-  t.normals_ms = timer.lap();
-  const std::vector<std::uint32_t> seeds = select_seeds(grid, config_.supervoxels, v);
-  t.seeds_ms = timer.lap();
-  const Supervoxels supervoxels = grow_supervoxels(grid, normals, seeds, config_.supervoxels, v);
-  t.growth_ms = timer.lap();
+SegmentationResult LccpSegmenter::label(const GrownSupervoxels& grown, const StageTimes& times) const {
+  SegmentationResult result;
+  result.times = times;
+  StageTimes& t = result.times;
+  LapTimer timer;
+  const VoxelGrid& grid = grown.voxels.grid;
+  const Supervoxels& supervoxels = grown.supervoxels;
+
   const std::vector<Edge> edges = supervoxel_adjacency(grid, supervoxels);
   t.adjacency_ms = timer.lap();
   const std::vector<std::uint8_t> convex =

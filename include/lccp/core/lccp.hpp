@@ -4,6 +4,8 @@
 
 #include "lccp/cloud.hpp"
 #include "lccp/config.hpp"
+#include "lccp/core/supervoxels.hpp"
+#include "lccp/core/voxel_grid.hpp"
 
 namespace lccp {
 
@@ -29,6 +31,18 @@ struct SegmentationResult {
   StageTimes times;
 };
 
+// Intermediate results between the stage groups (the streaming pipeline runs
+// each group in its own flow-graph node).
+struct VoxelizedCloud {
+  VoxelGrid grid;
+  std::vector<Eigen::Vector3f> normals;  // per voxel
+};
+
+struct GrownSupervoxels {
+  VoxelizedCloud voxels;
+  Supervoxels supervoxels;
+};
+
 class LccpSegmenter {
  public:
   // Throws lccp::Error if the config is out of range.
@@ -37,6 +51,12 @@ class LccpSegmenter {
   // Labels every finite point; deterministic for a given cloud and config,
   // whatever the thread count. Throws lccp::Error for a cloud without finite points.
   SegmentationResult segment(const PointCloud& cloud) const;
+
+  // segment() as three steps, for pipelining: stages 1-2, 3-4, 5-8. Each adds
+  // its stage times to `times`. label() returns the same result as segment().
+  VoxelizedCloud voxelize_with_normals(const PointCloud& cloud, StageTimes& times) const;
+  GrownSupervoxels grow(VoxelizedCloud voxels, StageTimes& times) const;
+  SegmentationResult label(const GrownSupervoxels& grown, const StageTimes& times) const;
 
   const LccpConfig& config() const { return config_; }
 
