@@ -33,15 +33,7 @@ namespace fs = std::filesystem;
 const fs::path kData = LCCP_TEST_DATA_DIR;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-// A fresh folder per test, so tests can run in parallel processes.
-fs::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("lccp_io_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch_dir() { return test::scratch_dir("lccp_io"); }
 
 
 

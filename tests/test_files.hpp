@@ -7,6 +7,8 @@
 #include <iterator>
 #include <string>
 
+#include <unistd.h>
+
 namespace lccp::test {
 
 inline std::string read_bytes(const std::filesystem::path& path) {
@@ -18,6 +20,18 @@ inline void write_bytes(const std::filesystem::path& path, const std::string& by
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   ASSERT_TRUE(out.good()) << "cannot write " << path;
+}
+
+// A fresh, empty folder for the running test: <tmp>/<prefix>_<pid>_<suite>_<test>,
+// so tests can run in parallel processes.
+inline std::filesystem::path scratch_dir(const std::string& prefix) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      (prefix + "_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 }  // namespace lccp::test

@@ -3,6 +3,7 @@
 #include <vector>
 #include <memory>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -21,13 +22,17 @@ int main(int argc, char** argv) {
 
   cli.fallthrough();  // --threads and --log-level may follow the subcommand (set before adding them)
   const std::vector<lccp::app::Subcommand> commands{lccp::app::add_segment_command(cli),
-                                                    lccp::app::add_eval_command(cli)};
+                                                    lccp::app::add_eval_command(cli),
+                                                    lccp::app::add_replay_command(cli),
+                                                    lccp::app::add_live_command(cli),
+                                                    lccp::app::add_record_command(cli)};
 
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
   }
+  spdlog::set_default_logger(spdlog::stderr_color_mt("lccp"));  // stdout carries results only
   spdlog::set_level(spdlog::level::from_str(log_level));
   lccp::keep_freed_memory_for_next_frames();
   std::unique_ptr<tbb::global_control> thread_limit;

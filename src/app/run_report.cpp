@@ -1,0 +1,85 @@
+#include "run_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "lccp/error.hpp"
+
+namespace lccp::app {
+
+Percentiles percentiles(std::vector<double> values) {
+  if (values.empty()) return {};
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double q) {  // nearest rank
+    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+    return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+  };
+  return {at(0.50), at(0.95), at(0.99), values.back()};
+}
+
+void RunReport::add(const FrameResult& result) {
+  FrameRecord record;
+  record.index = result.frame.index;
+  record.timestamp_us = result.frame.timestamp_us;
+  record.captured_s = std::chrono::duration<double>(result.frame.captured - start_).count();
+  record.back_projection_ms = result.back_projection_ms;
+  record.stages = result.segmentation.times;
+  record.end_to_end_ms = result.end_to_end_ms();
+  record.segments = result.segmentation.segment_count;
+  record.failed = !result.error.empty();
+  frames_.push_back(record);
+}
+
+std::uint64_t RunReport::frames_failed() const {
+  return static_cast<std::uint64_t>(std::count_if(frames_.begin(), frames_.end(), [](const auto& f) { return f.failed; }));
+}
+
+double RunReport::frames_per_second() const {
+  return stats_.wall_seconds > 0 ? static_cast<double>(stats_.frames_completed) / stats_.wall_seconds : 0;
+}
+
+Percentiles RunReport::end_to_end_ms() const {
+  std::vector<double> values;
+  for (const auto& f : frames_) values.push_back(f.end_to_end_ms);
+  return percentiles(std::move(values));
+}
+
+std::string RunReport::summary_line() const {
+  const Percentiles latency = end_to_end_ms();
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "frames %llu done, %llu dropped, %llu failed | %.1f frames/s | latency ms p50 %.1f p95 %.1f max %.1f",
+                static_cast<unsigned long long>(stats_.frames_completed),
+                static_cast<unsigned long long>(stats_.frames_dropped),
+                static_cast<unsigned long long>(frames_failed()), frames_per_second(), latency.p50, latency.p95,
+                latency.max);
+  return line;
+}
+
+void RunReport::write_json(const std::filesystem::path& path, const std::string& source) const {
+  const Percentiles latency = end_to_end_ms();
+  std::string escaped;
+  for (char c : source) {
+    if (c == '"' || c == '\\') escaped += '\\';
+    escaped += c;
+  }
+  const std::filesystem::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << "{\n  \"source\": \"" << escaped << "\",\n"
+        << "  \"frames_received\": " << stats_.frames_received << ",\n"
+        << "  \"frames_completed\": " << stats_.frames_completed << ",\n"
+        << "  \"frames_dropped\": " << stats_.frames_dropped << ",\n"
+        << "  \"frames_failed\": " << frames_failed() << ",\n"
+        << "  \"wall_seconds\": " << stats_.wall_seconds << ",\n"
+        << "  \"frames_per_second\": " << frames_per_second() << ",\n"
+        << "  \"end_to_end_ms\": {\"p50\": " << latency.p50 << ", \"p95\": " << latency.p95
+        << ", \"p99\": " << latency.p99 << ", \"max\": " << latency.max << "}\n}\n";
+    if (!out) throw Error("cannot write " + path.string());
+  }
+  std::filesystem::rename(partial, path);
+}
+
+}  // namespace lccp::app

@@ -1,0 +1,304 @@
+// Frame sources: depth-mode choice, back-projection against OpenNI2's own
+// CoordinateConverter, .oni recordings made from the virtual sensor, device
+// loss, and cloud files.
+#include <gtest/gtest.h>
+
+#include <OpenNI.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "lccp/capture/cloud_files.hpp"
+#include "lccp/capture/openni_session.hpp"
+#include "lccp/capture/openni_sources.hpp"
+#include "lccp/core/back_projection.hpp"
+#include "lccp/error.hpp"
+#include "lccp/synthetic/tabletop_scene.hpp"
+#include "test_files.hpp"
+
+namespace lccp {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kData = LCCP_TEST_DATA_DIR;
+
+// Expects an lccp::Error whose one-line message contains every part.
+template <typename Action>
+void expect_error(Action&& action, std::initializer_list<std::string> parts) {
+  try {
+    action();
+    ADD_FAILURE() << "no lccp::Error thrown";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+  }
+}
+
+// --- depth modes --------------------------------------------------------------------
+
+TEST(DepthModes, ExactModeIsChosen) {
+  const std::vector<DepthMode> offered{{320, 240, 30}, {640, 480, 60}, {640, 480, 30}};
+  EXPECT_EQ(nearest_depth_mode(offered, {640, 480, 30}), 2u);
+}
+
+TEST(DepthModes, NearestSizeFirstThenRate) {
+  const std::vector<DepthMode> offered{{320, 240, 30}, {640, 480, 60}, {1280, 1024, 30}, {640, 480, 25}};
+  EXPECT_EQ(nearest_depth_mode(offered, {640, 480, 30}), 3u);  // same size; 25 Hz is nearer 30 than 60
+  EXPECT_EQ(nearest_depth_mode({{320, 240, 30}, {1280, 1024, 30}}, {640, 480, 30}), 0u);
+}
+
+TEST(DepthModes, NoModeIsAnError) {
+  expect_error([] { nearest_depth_mode({}, {}); }, {"no video mode"});
+}
+
+// --- back-projection ----------------------------------------------------------------
+
+TEST(BackProjection, MatchesOpenNICoordinateConverterWithinHalfAMillimetre) {
+  initialize_openni();
+  openni::Device device;
+  ASSERT_EQ(device.open("virtual://synthetic"), openni::STATUS_OK) << openni_error();
+  openni::VideoStream stream;
+  ASSERT_EQ(stream.create(device, openni::SENSOR_DEPTH), openni::STATUS_OK) << openni_error();
+  ASSERT_EQ(stream.start(), openni::STATUS_OK);
+  openni::VideoStream* streams[] = {&stream};
+  int ready = -1;
+  ASSERT_EQ(openni::OpenNI::waitForAnyStream(streams, 1, &ready, 3000), openni::STATUS_OK);
+  openni::VideoFrameRef frame;
+  ASSERT_EQ(stream.readFrame(&frame), openni::STATUS_OK);
+
+  DepthImage image;
+  image.width = static_cast<std::uint32_t>(frame.getWidth());
+  image.height = static_cast<std::uint32_t>(frame.getHeight());
+  image.horizontal_fov_rad = stream.getHorizontalFieldOfView();
+  image.vertical_fov_rad = stream.getVerticalFieldOfView();
+  image.depth_mm.resize(std::size_t{image.width} * image.height);
+  for (std::uint32_t row = 0; row < image.height; ++row) {
+    std::memcpy(&image.depth_mm[row * image.width],
+                static_cast<const char*>(frame.getData()) + row * frame.getStrideInBytes(), image.width * 2);
+  }
+  const PointCloud cloud = back_project(image);
+  ASSERT_EQ(cloud.width, 640u);
+  ASSERT_EQ(cloud.height, 480u);
+
+  double worst_mm = 0;
+  std::size_t compared = 0;
+  for (std::uint32_t v = 0; v < image.height; ++v) {
+    for (std::uint32_t u = 0; u < image.width; ++u) {
+      const std::uint16_t mm = image.depth_mm[v * image.width + u];
+      const Eigen::Vector3f& p = cloud.points[v * image.width + u];
+      if (mm == 0) {
+        EXPECT_FALSE(is_finite(p));
+        continue;
+      }
+      float x = 0, y = 0, z = 0;
+      openni::CoordinateConverter::convertDepthToWorld(stream, static_cast<int>(u), static_cast<int>(v), mm, &x, &y, &z);
+      // OpenNI2's world y points up; ours (the optical frame) points down.
+      const Eigen::Vector3f openni_m(x / 1000.0f, -y / 1000.0f, z / 1000.0f);
+      worst_mm = std::max(worst_mm, 1000.0 * double((openni_m - p).cwiseAbs().maxCoeff()));
+      ++compared;
+    }
+  }
+  stream.stop();
+  stream.destroy();
+  device.close();
+  EXPECT_GT(compared, 100000u);
+  EXPECT_LT(worst_mm, 0.5);
+}
+
+TEST(BackProjection, RejectsAnImageWithoutFieldOfViewOrWithTheWrongSize) {
+  DepthImage image{4, 3, 1.0f, 0.8f, std::vector<std::uint16_t>(12, 1000)};
+  EXPECT_EQ(back_project(image).size(), 12u);
+  image.depth_mm.pop_back();
+  expect_error([&] { back_project(image); }, {"4x3", "11 pixels"});
+  image.depth_mm.push_back(1000);
+  image.horizontal_fov_rad = 0;
+  expect_error([&] { back_project(image); }, {"field of view"});
+}
+
+// --- recordings of the virtual sensor -----------------------------------------------
+
+class RecordingTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    directory_ = new fs::path(fs::temp_directory_path() / ("lccp_capture_" + std::to_string(::getpid())));
+    fs::create_directories(*directory_);
+    LiveOptions options;
+    options.uri = "virtual://synthetic";
+    const std::atomic<bool> never{false};
+    stats_ = record_device(options, recording(), kRecordedFrames, never);
+  }
+  static void TearDownTestSuite() {
+    std::error_code ignored;
+    fs::remove_all(*directory_, ignored);
+    delete directory_;
+  }
+  static fs::path recording() { return *directory_ / "synthetic.oni"; }
+
+  static constexpr std::uint64_t kRecordedFrames = 12;
+  static inline fs::path* directory_ = nullptr;
+  static inline RecordStats stats_;
+};
+
+TEST_F(RecordingTest, RecordHoldsTheFramesAskedFor) {
+  EXPECT_EQ(stats_.frames, kRecordedFrames);
+  EXPECT_EQ(stats_.mode, (DepthMode{640, 480, 30}));
+  EXPECT_TRUE(fs::exists(recording()));
+  for (const auto& entry : fs::directory_iterator(*directory_)) {
+    EXPECT_EQ(entry.path().filename().string().rfind(".partial", 0), std::string::npos) << "left behind: " << entry.path();
+  }
+}
+
+TEST_F(RecordingTest, ReplayDeliversEveryFrameInOrderWithTheSensorsDepth) {
+  const auto source = open_recording(recording());
+  ASSERT_EQ(source->frame_count(), kRecordedFrames);
+  EXPECT_FALSE(source->is_live());
+  const synthetic::TabletopScene scene;
+  std::uint64_t frames = 0;
+  std::uint64_t previous_timestamp = 0;
+  while (std::optional<Frame> frame = source->next()) {
+    EXPECT_EQ(frame->index, frames);
+    if (frames > 0) {
+      EXPECT_GT(frame->timestamp_us, previous_timestamp);
+    }
+    previous_timestamp = frame->timestamp_us;
+    ASSERT_TRUE(frame->depth.has_value());
+    const DepthImage& depth = *frame->depth;
+    EXPECT_EQ(depth.width, 640u);
+    EXPECT_EQ(depth.height, 480u);
+    EXPECT_NEAR(depth.horizontal_fov_rad, scene.camera().horizontal_fov_rad, 1e-5);
+    // The stored timestamps name the synthetic frame: its depth comes back exactly,
+    // but for the codec's last two pixels (GUIDE 4).
+    const DepthImage rendered = scene.render(synthetic::frame_of_timestamp_us(frame->timestamp_us)).depth;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i + 2 < depth.depth_mm.size(); ++i) differing += depth.depth_mm[i] != rendered.depth_mm[i];
+    EXPECT_EQ(differing, 0u) << "frame " << frames;
+    ++frames;
+  }
+  EXPECT_EQ(frames, kRecordedFrames);
+  EXPECT_FALSE(source->next().has_value()) << "a frame after the end";
+}
+
+TEST_F(RecordingTest, FrameLimitAndStopEndTheReplay) {
+  ReplayOptions options;
+  options.max_frames = 4;
+  const auto limited = open_recording(recording(), options);
+  EXPECT_EQ(limited->frame_count(), 4u);
+  int frames = 0;
+  while (limited->next()) ++frames;
+  EXPECT_EQ(frames, 4);
+
+  const auto stopped = open_recording(recording());
+  ASSERT_TRUE(stopped->next().has_value());
+  stopped->request_stop();
+  EXPECT_FALSE(stopped->next().has_value());
+}
+
+TEST_F(RecordingTest, RealtimeReplayKeepsTheRecordingsPace) {
+  ReplayOptions options;
+  options.realtime = true;
+  options.max_frames = 7;
+  const auto source = open_recording(recording(), options);
+  EXPECT_TRUE(source->is_live());
+  const auto start = std::chrono::steady_clock::now();
+  while (source->next()) {
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(seconds, 6 / 30.0 - 0.01);  // 6 frame periods after the first frame
+  EXPECT_LT(seconds, 2.0);
+}
+
+TEST_F(RecordingTest, TruncatedRecordingFailsWithinTheStallTimeout) {
+  const fs::path truncated = *directory_ / "truncated.oni";
+  const std::string bytes = test::read_bytes(recording());
+  test::write_bytes(truncated, bytes.substr(0, bytes.size() / 2));
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    ReplayOptions options;
+    options.stall_timeout_ms = 1000;
+    const auto source = open_recording(truncated, options);
+    while (source->next()) {
+    }
+    ADD_FAILURE() << "a truncated recording replayed to the end";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("truncated.oni"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
+
+TEST(Recording, MissingOrWrongFilesAreNamed) {
+  expect_error([] { open_recording("/nonexistent/x.oni"); }, {"/nonexistent/x.oni", "no such file"});
+  expect_error([] { open_recording(kData); }, {"not a file"});
+  expect_error([] { open_recording(kData / "mosd_test2.pcd"); }, {"mosd_test2.pcd", "not an .oni recording"});
+}
+
+// --- live devices -------------------------------------------------------------------
+
+TEST(LiveDevice, VirtualSensorStreamsAtThirtyHertz) {
+  LiveOptions options;
+  options.uri = "virtual://synthetic";
+  options.max_frames = 10;
+  const auto source = open_device(options);
+  EXPECT_TRUE(source->is_live());
+  const auto start = std::chrono::steady_clock::now();
+  int frames = 0;
+  while (std::optional<Frame> frame = source->next()) {
+    ASSERT_TRUE(frame->depth.has_value());
+    EXPECT_EQ(frame->depth->width, 640u);
+    ++frames;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(frames, 10);
+  EXPECT_GT(seconds, 0.2);  // 9 periods of 33 ms at least, give or take the first frame
+  EXPECT_LT(seconds, 1.5);
+}
+
+TEST(LiveDevice, DisappearingDeviceIsAnErrorNamingIt) {
+  LiveOptions options;
+  options.uri = "virtual://synthetic?frames=5";
+  const auto source = open_device(options);
+  int frames = 0;
+  const auto start = std::chrono::steady_clock::now();
+  expect_error(
+      [&] {
+        while (source->next()) ++frames;
+      },
+      {"virtual://synthetic", "disconnected", "after 5 frames"});
+  EXPECT_EQ(frames, 5);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST(LiveDevice, UriWithoutDeviceIsAnError) {
+  LiveOptions options;
+  options.uri = "virtual://no-such-scene";
+  expect_error([&] { open_device(options); }, {"cannot open device", "virtual://no-such-scene"});
+  options.uri = "usb://0000/0000";
+  expect_error([&] { open_device(options); }, {"cannot open device", "usb://0000/0000"});
+}
+
+// --- cloud files --------------------------------------------------------------------
+
+TEST(CloudFiles, DirectoryGivesItsCloudsSortedByName) {
+  const auto source = open_cloud_files({kData});
+  ASSERT_EQ(source->frame_count(), 4u);
+  std::vector<std::string> names;
+  while (std::optional<Frame> frame = source->next()) {
+    EXPECT_EQ(frame->index, names.size());
+    EXPECT_FALSE(frame->depth.has_value());
+    EXPECT_GT(frame->cloud.size(), 100000u);
+    names.push_back(frame->name);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"mosd_test2", "mosd_test34", "mosd_test43", "mosd_test60"}));
+}
+
+TEST(CloudFiles, MissingPathOrEmptyDirectoryIsAnError) {
+  expect_error([] { open_cloud_files({"/nonexistent/clouds"}); }, {"/nonexistent/clouds", "no such file"});
+  const fs::path empty = test::scratch_dir("lccp_capture");
+  expect_error([&] { open_cloud_files({empty}); }, {"holds no .pcd or .ply file"});
+}
+
+}  // namespace
+}  // namespace lccp

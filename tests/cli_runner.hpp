@@ -1,0 +1,152 @@
+#pragma once
+// Runs the real `lccp` binary for end-to-end tests: stdout, stderr and the exit
+// status captured, a timeout against hangs, and checks for the one-line errors.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <initializer_list>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "test_files.hpp"
+
+extern char** environ;
+
+namespace lccp::test {
+
+namespace fs = std::filesystem;
+
+inline const fs::path kBinary = LCCP_BINARY;
+
+struct RunResult {
+  std::string command;  // for failure messages
+  int exit_code = -1;   // -1 if the process did not exit normally
+  int signal = 0;       // the signal that killed it, 0 if none
+  std::string out;
+  std::string err;
+};
+
+
+
+// Runs `timeout SECONDS lccp ARGS...` without a shell, stdin from /dev/null and
+// stdout/stderr into files under `capture_dir`. timeout(1) re-raises a signal
+// that killed lccp, so a crash shows up as `signal`; a hang exits 124.
+inline RunResult run_lccp(const fs::path& capture_dir, const std::vector<std::string>& args, int timeout_seconds = 60) {
+  RunResult result;
+  result.command = kBinary.string();
+  for (const std::string& arg : args) result.command += " " + arg;
+
+  static int run_number = 0;
+  const std::string tag = std::to_string(run_number++);
+  const fs::path out_path = capture_dir / ("stdout" + tag);
+  const fs::path err_path = capture_dir / ("stderr" + tag);
+
+  std::vector<std::string> argv_text = {"timeout", "-k", "5", std::to_string(timeout_seconds), kBinary.string()};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : argv_text) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int spawn_error = posix_spawnp(&pid, "timeout", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error != 0) {
+    ADD_FAILURE() << "cannot start " << result.command << ": " << std::strerror(spawn_error);
+    return result;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      ADD_FAILURE() << "waitpid failed for " << result.command;
+      return result;
+    }
+  }
+  if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+  result.out = read_bytes(out_path);
+  result.err = read_bytes(err_path);
+  EXPECT_NE(result.exit_code, 124) << "timed out after " << timeout_seconds << " s: " << result.command;
+  return result;
+}
+
+inline std::string describe(const RunResult& r) {
+  return r.command + "\n  exit " + std::to_string(r.exit_code) + ", signal " + std::to_string(r.signal) +
+         "\n  stdout: [" + r.out + "]\n  stderr: [" + r.err + "]";
+}
+
+// An lccp::Error: exit 1, nothing on stdout, exactly one stderr line
+// "lccp: error: ..." containing every phrase.
+inline void expect_error(const RunResult& r, std::initializer_list<std::string> phrases) {
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.signal, 0) << "killed by a signal";
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err.rfind("lccp: error: ", 0), 0u) << "stderr does not start with 'lccp: error: '";
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr is not exactly one line";
+  EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << "stderr does not end with a newline";
+  for (const std::string& phrase : phrases) {
+    EXPECT_NE(r.err.find(phrase), std::string::npos) << "stderr does not mention '" << phrase << "'";
+  }
+}
+
+// A CLI11 usage error: a normal non-zero exit (not 1, which is lccp::Error; not
+// a timeout or a shell-style signal code) with a message on stderr.
+inline void expect_usage_error(const RunResult& r) {
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.signal, 0) << "killed by a signal";
+  EXPECT_GT(r.exit_code, 1);
+  EXPECT_LT(r.exit_code, 124);
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(r.err.empty());
+}
+
+inline void expect_success(const RunResult& r) {
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.signal, 0) << "killed by a signal";
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+}
+
+inline std::set<std::string> list_dir(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename().string());
+  return names;
+}
+
+// "key value" from a line like "..., supervoxels 2468, segments 3 | ...".
+inline unsigned long summary_count(const std::string& summary, const std::string& key) {
+  std::smatch match;
+  const std::regex pattern("\\b" + key + " ([0-9]+)");
+  if (!std::regex_search(summary, match, pattern)) {
+    ADD_FAILURE() << "no '" << key << " N' in summary: " << summary;
+    return 0;
+  }
+  return std::stoul(match[1]);
+}
+
+// The number after "key": in one-line JSON output.
+inline double json_number(const std::string& json, const std::string& key) {
+  std::smatch match;
+  const std::regex pattern("\"" + key + "\": *(-?[0-9][0-9.eE+-]*)");
+  if (!std::regex_search(json, match, pattern)) {
+    ADD_FAILURE() << "no number \"" << key << "\" in: " << json;
+    return -1.0;
+  }
+  return std::stod(match[1]);
+}
+
+}  // namespace lccp::test

@@ -1,0 +1,191 @@
+// End-to-end tests of `lccp record`, `lccp replay` and `lccp live` through the
+// real binary and OpenNI2, on the project's virtual sensor.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "lccp/io/cloud_io.hpp"
+#include "test_files.hpp"
+
+namespace lccp {
+namespace {
+
+using namespace test;  // run_lccp, expect_error and the other runner helpers
+
+constexpr int kErrorTimeoutSeconds = 10;  // every failure must end within this
+
+// The per-frame outputs in a folder with the given suffix, sorted by name.
+std::vector<std::string> frame_files(const fs::path& dir, const std::string& suffix) {
+  std::vector<std::string> names;
+  for (const std::string& name : list_dir(dir)) {
+    if (name.rfind("frame_", 0) == 0 && name.size() > suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+// frame_<index>_<timestamp>us.<ext> -> (index, timestamp)
+std::pair<std::uint64_t, std::uint64_t> index_and_timestamp(const std::string& name) {
+  std::smatch match;
+  const std::regex pattern("frame_([0-9]+)_([0-9]+)us\\.");
+  if (!std::regex_search(name, match, pattern)) {
+    ADD_FAILURE() << "output name without index and timestamp: " << name;
+    return {0, 0};
+  }
+  return {std::stoull(match[1]), std::stoull(match[2])};
+}
+
+// One recording of the virtual sensor's synthetic scene, made once with `lccp record`.
+class StreamCliTest : public ::testing::Test {
+ protected:
+  static constexpr int kRecordedFrames = 15;
+
+  static void SetUpTestSuite() {
+    shared_ = new fs::path(fs::temp_directory_path() / ("lccp_stream_cli_" + std::to_string(::getpid())));
+    fs::create_directories(*shared_);
+    record_result_ = new RunResult(run_lccp(*shared_, {"record", "--uri", "virtual://synthetic", "-o",
+                                                       recording().string(), "--frames", std::to_string(kRecordedFrames)}));
+  }
+  static void TearDownTestSuite() {
+    std::error_code ignored;
+    fs::remove_all(*shared_, ignored);
+    delete shared_;
+    delete record_result_;
+  }
+  static fs::path recording() { return *shared_ / "synthetic.oni"; }
+
+  void SetUp() override {
+    root_ = scratch_dir("lccp_stream_cli");
+    work_ = root_ / "work";
+    capture_ = root_ / "capture";
+    fs::create_directories(work_);
+    fs::create_directories(capture_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+  RunResult run(const std::vector<std::string>& args, int timeout_seconds = 60) {
+    return run_lccp(capture_, args, timeout_seconds);
+  }
+  // Fails within the error timeout: exit 1, one line naming every phrase, no crash.
+  void expect_quick_error(const std::vector<std::string>& args, std::initializer_list<std::string> phrases) {
+    expect_error(run(args, kErrorTimeoutSeconds), phrases);
+  }
+
+  static inline fs::path* shared_ = nullptr;
+  static inline RunResult* record_result_ = nullptr;
+  fs::path root_, work_, capture_;
+};
+
+TEST_F(StreamCliTest, RecordWritesTheFramesAskedFor) {
+  expect_success(*record_result_);
+  EXPECT_NE(record_result_->out.find("recorded " + std::to_string(kRecordedFrames) + " depth frames (640x480 @ 30 Hz)"),
+            std::string::npos)
+      << record_result_->out;
+}
+
+TEST_F(StreamCliTest, ReplayGivesEveryFrameInOrderWithIncreasingTimestamps) {
+  const fs::path out = work_ / "out";
+  const RunResult r = run({"replay", recording().string(), "-o", out.string(), "--save", "pcd,png", "--quiet"});
+  expect_success(r);
+  const std::string summary = read_bytes(out / "summary.json");
+  EXPECT_EQ(json_number(summary, "frames_completed"), kRecordedFrames) << summary;
+  EXPECT_EQ(json_number(summary, "frames_dropped"), 0) << summary;
+  EXPECT_EQ(json_number(summary, "frames_failed"), 0) << summary;
+  const std::vector<std::string> pngs = frame_files(out, ".png");
+  const std::vector<std::string> pcds = frame_files(out, ".pcd");
+  ASSERT_EQ(pngs.size(), static_cast<std::size_t>(kRecordedFrames));
+  ASSERT_EQ(pcds.size(), static_cast<std::size_t>(kRecordedFrames));
+  for (std::size_t i = 0; i < pngs.size(); ++i) {
+    const auto [index, timestamp] = index_and_timestamp(pngs[i]);
+    EXPECT_EQ(index, i);
+    if (i > 0) {
+      EXPECT_GT(timestamp, index_and_timestamp(pngs[i - 1]).second);
+    }
+  }
+  EXPECT_NE(r.out.find("frames " + std::to_string(kRecordedFrames) + " done, 0 dropped, 0 failed"), std::string::npos)
+      << r.out;
+}
+
+TEST_F(StreamCliTest, ReplayLabelsEqualSegmentOnTheSameFramesCloud) {
+  const fs::path out = work_ / "out";
+  expect_success(run({"replay", recording().string(), "-o", out.string(), "--save", "pcd", "--frames", "3", "--quiet"}));
+  const std::vector<std::string> pcds = frame_files(out, ".pcd");
+  ASSERT_EQ(pcds.size(), 3u);
+  for (const std::string& name : pcds) {
+    const fs::path segmented = work_ / ("segment_" + name);
+    expect_success(run({"segment", (out / name).string(), "-o", segmented.string()}));
+    const LabelledCloud replayed = read_cloud(out / name);
+    const LabelledCloud single = read_cloud(segmented);
+    ASSERT_TRUE(replayed.labels && single.labels);
+    EXPECT_EQ(*replayed.labels, *single.labels) << name;
+    EXPECT_GT(*std::max_element(replayed.labels->begin(), replayed.labels->end()), 3u) << name;
+  }
+}
+
+TEST_F(StreamCliTest, LiveOnTheVirtualSensorForFiveSecondsAccountsForAboutOneHundredFiftyFrames) {
+  const fs::path out = work_ / "out";
+  const RunResult r = run({"live", "--uri", "virtual://synthetic", "--seconds", "5", "-o", out.string(), "--quiet", "--log-level", "warn"});
+  expect_success(r);
+  const std::string summary = read_bytes(out / "summary.json");
+  const double completed = json_number(summary, "frames_completed");
+  const double dropped = json_number(summary, "frames_dropped");
+  // 5 s of a 30 Hz sensor: every frame is either segmented or counted as dropped.
+  EXPECT_GE(completed + dropped, 140) << summary;
+  EXPECT_LE(completed + dropped, 152) << summary;
+  EXPECT_GE(completed, 60) << summary;
+  EXPECT_EQ(frame_files(out, ".png").size(), static_cast<std::size_t>(completed));
+}
+
+TEST_F(StreamCliTest, LiveDeviceThatDisappearsFlushesItsFramesAndFails) {
+  const fs::path out = work_ / "out";
+  const RunResult r = run({"live", "--uri", "virtual://synthetic?frames=20", "-o", out.string(), "--quiet"},
+                          kErrorTimeoutSeconds);
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("lccp: error: ", 0), 0u);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  EXPECT_NE(r.err.find("disconnected after 20 frames"), std::string::npos);
+  const std::string summary = read_bytes(out / "summary.json");
+  EXPECT_EQ(json_number(summary, "frames_completed") + json_number(summary, "frames_dropped"), 20) << summary;
+  EXPECT_EQ(frame_files(out, ".png").size(), static_cast<std::size_t>(json_number(summary, "frames_completed")));
+}
+
+TEST_F(StreamCliTest, MissingRecording) {
+  expect_quick_error({"replay", (work_ / "absent.oni").string()}, {"absent.oni", "no such file"});
+}
+
+TEST_F(StreamCliTest, CorruptRecording) {
+  std::string bytes = read_bytes(recording());
+  for (std::size_t i = 0; i < 4096 && i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 131 + 7);
+  write_bytes(work_ / "corrupt.oni", bytes);
+  expect_quick_error({"replay", (work_ / "corrupt.oni").string()}, {"corrupt.oni"});
+  write_bytes(work_ / "text.oni", "this is not a recording\n");
+  expect_quick_error({"replay", (work_ / "text.oni").string()}, {"text.oni"});
+}
+
+TEST_F(StreamCliTest, TruncatedRecording) {
+  const std::string bytes = read_bytes(recording());
+  write_bytes(work_ / "truncated.oni", bytes.substr(0, bytes.size() / 2));
+  expect_quick_error({"replay", (work_ / "truncated.oni").string()}, {"truncated.oni"});
+}
+
+TEST_F(StreamCliTest, UriWithoutDevice) {
+  expect_quick_error({"live", "--uri", "virtual://no-such-scene", "--frames", "3"}, {"virtual://no-such-scene"});
+  expect_quick_error({"live", "--uri", "usb://0000/0000", "--frames", "3"}, {"usb://0000/0000"});
+  expect_quick_error({"record", "--uri", "usb://0000/0000", "-o", (work_ / "x.oni").string(), "--frames", "3"},
+                     {"usb://0000/0000"});
+  EXPECT_FALSE(fs::exists(work_ / "x.oni"));
+}
+
+}  // namespace
+}  // namespace lccp
