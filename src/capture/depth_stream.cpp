@@ -50,7 +50,11 @@ void DepthStream::open_live(const LiveOptions& options) {
     openni::Array<openni::DeviceInfo> devices;
     openni::OpenNI::enumerateDevices(&devices);
     if (devices.getSize() == 0) throw Error("no OpenNI2 device found (none attached; give one with --uri)");
+    // A real sensor before our virtual one (drivers load in file-name order).
     uri = devices[0].getUri();
+    for (int i = devices.getSize() - 1; i >= 0; --i) {
+      if (std::string(devices[i].getUri()).rfind("virtual://", 0) != 0) uri = devices[i].getUri();
+    }
   }
   open_device(uri, "cannot open device " + uri);
   open_depth_stream();
