@@ -173,6 +173,39 @@ TEST_F(StreamCliTest, CorruptRecording) {
   expect_quick_error({"replay", (work_ / "text.oni").string()}, {"text.oni"});
 }
 
+TEST_F(StreamCliTest, RecordingWithoutDepthStream) {
+  // The recording's one stream, declared an IR stream instead: the node type
+  // (2 = depth, 5 = IR) follows the node name "Depth\0" in its NodeAdded record.
+  std::string bytes = read_bytes(recording());
+  const std::size_t name = bytes.find(std::string("Depth\0", 6));
+  ASSERT_NE(name, std::string::npos);
+  ASSERT_EQ(bytes[name + 6], '\x02');
+  bytes[name + 6] = '\x05';
+  write_bytes(work_ / "infrared.oni", bytes);
+  expect_quick_error({"replay", (work_ / "infrared.oni").string()}, {"infrared.oni", "no depth stream"});
+}
+
+TEST_F(StreamCliTest, RandomlyDamagedRecordingsNeverCrashOrHang) {
+  const std::string original = read_bytes(recording());
+  std::uint64_t state = 12345;
+  const auto random = [&] {  // xorshift64: the same damage on every run
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  };
+  for (int variant = 0; variant < 4; ++variant) {
+    std::string bytes = original;
+    for (int i = 0; i < 50; ++i) bytes[random() % bytes.size()] = static_cast<char>(random());
+    const fs::path damaged = work_ / ("damaged" + std::to_string(variant) + ".oni");
+    write_bytes(damaged, bytes);
+    const RunResult r = run({"replay", damaged.string(), "--quiet", "--log-level", "error"}, kErrorTimeoutSeconds);
+    SCOPED_TRACE(describe(r));
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1);
+  }
+}
+
 TEST_F(StreamCliTest, TruncatedRecording) {
   const std::string bytes = read_bytes(recording());
   write_bytes(work_ / "truncated.oni", bytes.substr(0, bytes.size() / 2));

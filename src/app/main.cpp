@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
                                                     lccp::app::add_eval_command(cli),
                                                     lccp::app::add_replay_command(cli),
                                                     lccp::app::add_live_command(cli),
-                                                    lccp::app::add_record_command(cli)};
+                                                    lccp::app::add_record_command(cli),
+                                                    lccp::app::add_truth_command(cli)};
 
   try {
     cli.parse(argc, argv);
