@@ -1,6 +1,8 @@
 // lccp record --uri URI -o FILE.oni --frames N: a device's depth stream to an .oni file.
 #include <cstdio>
 
+#include <spdlog/spdlog.h>
+
 #include "commands.hpp"
 #include "lccp/capture/openni_sources.hpp"
 #include "stop_signal.hpp"
@@ -19,6 +21,9 @@ int run_record(const RecordCommandOptions& options) {
   LiveOptions live;
   live.uri = options.uri;
   const RecordStats stats = record_device(live, options.output, options.frames, stop.flag());
+  if (stats.frames != options.frames && !stop.requested()) {
+    spdlog::warn("the recording holds {} frames, not the {} asked for", stats.frames, options.frames);
+  }
   std::printf("recorded %llu depth frames (%dx%d @ %d Hz) from %s to %s\n",
               static_cast<unsigned long long>(stats.frames), stats.mode.width, stats.mode.height, stats.mode.fps,
               options.uri.c_str(), options.output.c_str());

@@ -2,12 +2,13 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <iterator>
-#include <optional>
-
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
+#include <thread>
 
 #include <OpenNI.h>
 
@@ -19,18 +20,11 @@
 namespace lccp {
 namespace {
 
-// The frames an .oni file holds (0 if it cannot be opened).
-std::uint64_t frames_in_recording(const std::filesystem::path& path) {
-  openni::Device device;
-  if (device.open(path.c_str()) != openni::STATUS_OK) return 0;
-  openni::VideoStream stream;
-  std::uint64_t frames = 0;
-  if (stream.create(device, openni::SENSOR_DEPTH) == openni::STATUS_OK) {
-    frames = static_cast<std::uint64_t>(std::max(0, device.getPlaybackControl()->getNumberOfFrames(stream)));
-    stream.destroy();
-  }
-  device.close();
-  return frames;
+// Whether two depth images agree, but for the last two pixels, which the
+// recorder's 16zT codec may alter (GUIDE 4).
+bool same_depth(const DepthImage& a, const DepthImage& b) {
+  if (a.depth_mm.size() != b.depth_mm.size() || a.depth_mm.size() < 2) return false;
+  return std::equal(a.depth_mm.begin(), a.depth_mm.end() - 2, b.depth_mm.begin());
 }
 
 // openni::Recorder leaves the file padded with zeros to about twice its
@@ -71,6 +65,7 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
   const std::filesystem::path partial =
       output.parent_path() / (".partial-" + std::to_string(::getpid()) + "-" + output.filename().string());
   std::uint64_t read = 0;
+  DepthImage first_depth;
   {
     openni::Recorder recorder;
     if (recorder.create(partial.c_str()) != openni::STATUS_OK) {
@@ -78,16 +73,24 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
     }
     recorder.attach(stream.stream(), /*allowLossyCompression=*/false);
     recorder.start();
+    // The recorder starts on its own thread: a frame sent at once could miss it.
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
     stream.start();
     // Counted by the sensor's frame index, so a frame we were too late to read
     // (the recorder still has it) counts too.
     std::optional<std::uint64_t> first_index;
     while (read < frames) {
-      const std::optional<Frame> frame = stream.wait_and_read(options.stall_timeout_ms, stop);
+      std::optional<Frame> frame = stream.wait_and_read(options.stall_timeout_ms, stop);
       if (!frame) break;
-      if (!first_index) first_index = frame->index;
+      if (!first_index) {
+        first_index = frame->index;
+        first_depth = std::move(*frame->depth);
+      }
       read = frame->index - *first_index + 1;
     }
+    // OpenNI2 hands a frame to the recorder just after waking readers: give
+    // it the last frame before stopping (the next is a frame period away).
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
     recorder.stop();
     recorder.destroy();
   }
@@ -98,10 +101,22 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
     if (stream.lost()) throw Error("device " + stream.uri() + " disconnected" + after);
     throw Error("device " + stream.uri() + " stopped sending frames" + after);
   }
+  trim_recorder_padding(partial);
+  // The file must hold what we saw: every frame from the first one we read.
   RecordStats stats;
   stats.mode = stream.mode();
-  trim_recorder_padding(partial);
-  stats.frames = frames_in_recording(partial);
+  bool starts_with_first_frame = false;
+  {
+    const auto replay = open_recording(partial);
+    const std::optional<Frame> first_recorded = replay->next();
+    stats.frames = replay->frame_count().value_or(0);
+    starts_with_first_frame = first_recorded && same_depth(*first_recorded->depth, first_depth);
+  }
+  if (!starts_with_first_frame || stats.frames < read) {
+    std::filesystem::remove(partial, ignored);
+    throw Error("openni::Recorder missed frames of " + stream.uri() + " (" + std::to_string(stats.frames) + " of " +
+                std::to_string(read) + " recorded); " + output.string() + " not written");
+  }
   std::filesystem::rename(partial, output, ignored);
   if (ignored) {
     std::filesystem::remove(partial, ignored);
