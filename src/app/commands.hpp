@@ -22,6 +22,7 @@ Subcommand add_replay_command(CLI::App& cli);
 Subcommand add_live_command(CLI::App& cli);
 Subcommand add_record_command(CLI::App& cli);
 Subcommand add_truth_command(CLI::App& cli);
+Subcommand add_profile_command(CLI::App& cli);
 
 // --config FILE and --set key=value, shared by every command that segments.
 struct ConfigOptions {

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
                                                     lccp::app::add_replay_command(cli),
                                                     lccp::app::add_live_command(cli),
                                                     lccp::app::add_record_command(cli),
-                                                    lccp::app::add_truth_command(cli)};
+                                                    lccp::app::add_truth_command(cli),
+                                                    lccp::app::add_profile_command(cli)};
 
   try {
     cli.parse(argc, argv);

@@ -1,5 +1,7 @@
 #include "run_report.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +10,13 @@
 #include "lccp/error.hpp"
 
 namespace lccp::app {
+namespace {
+
+double seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); }
+
+}  // namespace
+
+double FrameRecord::waiting_ms() const { return std::max(0.0, end_to_end_ms - back_projection_ms - stages.total_ms()); }
 
 Percentiles percentiles(std::vector<double> values) {
   if (values.empty()) return {};
@@ -17,6 +26,12 @@ Percentiles percentiles(std::vector<double> values) {
     return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
   };
   return {at(0.50), at(0.95), at(0.99), values.back()};
+}
+
+CpuTimes process_cpu_times() {
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) != 0) return {};
+  return {seconds(usage.ru_utime), seconds(usage.ru_stime)};
 }
 
 void RunReport::add(const FrameResult& result) {
@@ -46,6 +61,14 @@ Percentiles RunReport::end_to_end_ms() const {
   return percentiles(std::move(values));
 }
 
+Percentiles RunReport::percentiles_of(const std::function<double(const FrameRecord&)>& ms) const {
+  std::vector<double> values;
+  for (const auto& f : frames_) {
+    if (!f.failed) values.push_back(ms(f));
+  }
+  return percentiles(std::move(values));
+}
+
 std::string RunReport::summary_line() const {
   const Percentiles latency = end_to_end_ms();
   char line[256];
@@ -60,15 +83,8 @@ std::string RunReport::summary_line() const {
 
 void RunReport::write_json(const std::filesystem::path& path, const std::string& source) const {
   const Percentiles latency = end_to_end_ms();
-  std::string escaped;
-  for (char c : source) {
-    if (c == '"' || c == '\\') escaped += '\\';
-    escaped += c;
-  }
-  const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial);
-    out << "{\n  \"source\": \"" << escaped << "\",\n"
+  write_atomically(path, [&](std::ostream& out) {
+    out << "{\n  \"source\": " << json_string(source) << ",\n"
         << "  \"frames_received\": " << stats_.frames_received << ",\n"
         << "  \"frames_completed\": " << stats_.frames_completed << ",\n"
         << "  \"frames_dropped\": " << stats_.frames_dropped << ",\n"
@@ -77,9 +93,41 @@ void RunReport::write_json(const std::filesystem::path& path, const std::string&
         << "  \"frames_per_second\": " << frames_per_second() << ",\n"
         << "  \"end_to_end_ms\": {\"p50\": " << latency.p50 << ", \"p95\": " << latency.p95
         << ", \"p99\": " << latency.p99 << ", \"max\": " << latency.max << "}\n}\n";
-    if (!out) throw Error("cannot write " + path.string());
+  });
+}
+
+std::string json_string(std::string_view text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
+      quoted += escaped;
+    } else {
+      quoted += c;
+    }
   }
-  std::filesystem::rename(partial, path);
+  return quoted + "\"";
+}
+
+void write_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
+  const std::filesystem::path partial = path.string() + ".partial";
+  std::error_code error;
+  try {
+    std::ofstream out(partial);
+    if (out) write(out);
+    out.close();
+    if (out) std::filesystem::rename(partial, path, error);
+    if (out && !error) return;
+  } catch (...) {
+    std::filesystem::remove(partial, error);
+    throw;
+  }
+  std::filesystem::remove(partial, error);
+  throw Error("cannot write " + path.string());
 }
 
 }  // namespace lccp::app

@@ -2,7 +2,10 @@
 // What a stream run measured: per-frame records and their summary statistics.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lccp/pipeline/pipeline.hpp"
@@ -18,6 +21,16 @@ struct FrameRecord {
   double end_to_end_ms = 0;      // captured -> labels ready
   std::uint32_t segments = 0;
   bool failed = false;
+
+  // The pipeline's nodes, each a group of the method's stages.
+  double voxelize_normals_ms() const { return stages.voxelize_ms + stages.normals_ms; }
+  double supervoxels_ms() const { return stages.seeds_ms + stages.growth_ms; }
+  double classify_label_filter_ms() const {
+    return stages.adjacency_ms + stages.classify_ms + stages.label_ms + stages.filter_ms;
+  }
+  // End to end minus the stages: waiting for a free slot (K frames in flight),
+  // between nodes and for the frames before it (the sequencer). >= 0.
+  double waiting_ms() const;
 };
 
 struct Percentiles {
@@ -25,17 +38,43 @@ struct Percentiles {
 };
 Percentiles percentiles(std::vector<double> values);
 
+// Processor time the whole process used during a run (getrusage: every thread,
+// including the capture thread and OpenNI2's), against the run's wall time.
+struct CpuUse {
+  double user_s = 0;
+  double system_s = 0;
+  double wall_s = 0;
+  unsigned cores = 1;  // cores available to the process (tbb::this_task_arena::max_concurrency())
+
+  double percent_of_one_core() const { return wall_s > 0 ? 100.0 * (user_s + system_s) / wall_s : 0; }
+  double percent_of_cores() const { return percent_of_one_core() / cores; }
+};
+
+// The process's user and system time so far, for CpuUse (as a difference of two readings).
+struct CpuTimes {
+  double user_s = 0;
+  double system_s = 0;
+};
+CpuTimes process_cpu_times();
+
 class RunReport {
  public:
   explicit RunReport(Clock::time_point start) : start_(start) {}
   void add(const FrameResult& result);
-  void finish(const PipelineStats& stats) { stats_ = stats; }
+  void finish(const PipelineStats& stats, const CpuUse& cpu) {
+    stats_ = stats;
+    cpu_ = cpu;
+  }
 
   const std::vector<FrameRecord>& frames() const { return frames_; }
   const PipelineStats& stats() const { return stats_; }
+  const CpuUse& cpu() const { return cpu_; }
   std::uint64_t frames_failed() const;
   double frames_per_second() const;
-  Percentiles end_to_end_ms() const;
+  Percentiles end_to_end_ms() const;  // over every completed frame
+  // One per-frame time (e.g. &FrameRecord::supervoxels_ms) over the frames that
+  // did not fail: a failed frame's later stages never ran.
+  Percentiles percentiles_of(const std::function<double(const FrameRecord&)>& ms) const;
 
   // One line: frames done / dropped / failed, fps, latency p50 / p95 / max.
   std::string summary_line() const;
@@ -45,6 +84,14 @@ class RunReport {
   Clock::time_point start_;
   std::vector<FrameRecord> frames_;
   PipelineStats stats_;
+  CpuUse cpu_;
 };
+
+// `text` as a JSON string literal, quotes included.
+std::string json_string(std::string_view text);
+
+// Writes a file so that it appears whole or not at all: into PATH.partial,
+// then renamed over PATH. Throws lccp::Error naming PATH if it cannot be written.
+void write_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace lccp::app

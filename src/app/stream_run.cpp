@@ -2,13 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <thread>
 
 #include <spdlog/spdlog.h>
+#include <tbb/task_arena.h>
 
 #include "lccp/error.hpp"
-#include "run_report.hpp"
 
 namespace lccp::app {
 namespace {
@@ -68,14 +69,97 @@ class StopWatcher {
   std::thread thread_;
 };
 
+// Forwards a source and counts what it delivers the way the pipeline does
+// (frames taken; index gaps as lost frames), because the pipeline's own counts
+// are lost when the source throws.
+class CountedSource final : public FrameSource {
+ public:
+  explicit CountedSource(FrameSource& source) : source_(source) {}
+
+  std::optional<Frame> next() override {
+    std::optional<Frame> frame = source_.next();
+    if (!frame) return frame;
+    if (last_index_ && frame->index > *last_index_ + 1) lost_ += frame->index - *last_index_ - 1;
+    last_index_ = frame->index;
+    ++received_;
+    return frame;
+  }
+  std::optional<std::uint64_t> frame_count() const override { return source_.frame_count(); }
+  bool is_live() const override { return source_.is_live(); }
+  void request_stop() override { source_.request_stop(); }
+
+  // After a run that ended early: every frame taken and not completed counts as dropped.
+  PipelineStats stats(std::uint64_t completed) const {
+    PipelineStats stats;
+    stats.frames_received = received_;
+    stats.frames_completed = completed;
+    stats.frames_dropped = received_ + lost_ - std::min(completed, received_ + lost_);
+    return stats;
+  }
+
+ private:
+  FrameSource& source_;
+  std::optional<std::uint64_t> last_index_;
+  std::uint64_t received_ = 0;
+  std::uint64_t lost_ = 0;
+};
+
 }  // namespace
+
+void add_inflight_option(CLI::App& command, unsigned& frames_in_flight) {
+  command.add_option("--inflight", frames_in_flight, "frames processed at once (K)")
+      ->check(CLI::Range(1u, 16u))
+      ->capture_default_str();
+}
+
+DropPolicy drop_policy_for(const FrameSource& source) {
+  return source.is_live() ? DropPolicy::drop_oldest : DropPolicy::block;
+}
+
+PipelineRun run_pipeline(FrameSource& source, const LccpSegmenter& segmenter, const PipelineRunOptions& options,
+                         const StopOnSignal& stop, const std::function<void(const FrameResult&)>& on_frame) {
+  PipelineConfig pipeline_config;
+  pipeline_config.frames_in_flight = options.frames_in_flight;
+  pipeline_config.drop_policy = drop_policy_for(source);
+  Pipeline pipeline(segmenter, pipeline_config);
+  CountedSource counted(source);
+
+  const Clock::time_point start = Clock::now();
+  const CpuTimes cpu_start = process_cpu_times();
+  PipelineRun run{RunReport(start), {}, false};
+  ProgressLine progress(options.progress, source.frame_count(), start);
+  PipelineStats stats;
+  {
+    StopWatcher watcher(stop.flag(), pipeline);
+    try {
+      stats = pipeline.run(counted, [&](FrameResult& result) {
+        if (!result.error.empty()) spdlog::warn("frame {}: {}", result.frame.index, result.error);
+        if (on_frame) on_frame(result);
+        run.report.add(result);
+        progress.update(run.report.frames().size());
+      });
+    } catch (const Error& e) {
+      run.source_error = e.what();
+      stats = counted.stats(run.report.frames().size());
+    }
+  }
+  const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+  if (!run.source_error.empty()) stats.wall_seconds = wall_s;
+  const CpuTimes cpu_end = process_cpu_times();
+  CpuUse cpu;
+  cpu.user_s = cpu_end.user_s - cpu_start.user_s;
+  cpu.system_s = cpu_end.system_s - cpu_start.system_s;
+  cpu.wall_s = wall_s;
+  cpu.cores = static_cast<unsigned>(std::max(1, tbb::this_task_arena::max_concurrency()));
+  run.report.finish(stats, cpu);
+  run.interrupted = stop.requested();
+  return run;
+}
 
 void StreamOptions::add_to(CLI::App& command) {
   config.add_to(command);
   outputs.add_to(command);
-  command.add_option("--inflight", frames_in_flight, "frames processed at once (K)")
-      ->check(CLI::Range(1u, 16u))
-      ->capture_default_str();
+  add_inflight_option(command, frames_in_flight);
   command.add_flag("-q,--quiet", quiet, "no progress line");
 }
 
@@ -83,42 +167,16 @@ int run_stream(FrameSource& source, const StreamOptions& options, const std::str
                const StopOnSignal& stop) {
   const LccpSegmenter segmenter(options.config.resolve());
   FrameWriter writer(options.outputs);
-  PipelineConfig pipeline_config;
-  pipeline_config.frames_in_flight = options.frames_in_flight;
-  pipeline_config.drop_policy = source.is_live() ? DropPolicy::drop_oldest : DropPolicy::block;
-  Pipeline pipeline(segmenter, pipeline_config);
-
-  const Clock::time_point start = Clock::now();
-  RunReport report(start);
-  ProgressLine progress(!options.quiet, source.frame_count(), start);
-  std::string source_error;
-  {
-    StopWatcher watcher(stop.flag(), pipeline);
-    try {
-      report.finish(pipeline.run(source, [&](FrameResult& result) {
-        if (!result.error.empty()) spdlog::warn("frame {}: {}", result.frame.index, result.error);
-        writer.write(result);
-        report.add(result);
-        progress.update(report.frames().size());
-      }));
-    } catch (const Error& e) {
-      source_error = e.what();
-    }
-  }
-  if (!source_error.empty()) {
-    PipelineStats stats = report.stats();
-    stats.frames_completed = report.frames().size();
-    stats.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    report.finish(stats);
-  }
+  const PipelineRun run = run_pipeline(source, segmenter, {options.frames_in_flight, !options.quiet}, stop,
+                                       [&](const FrameResult& result) { writer.write(result); });
   if (!options.outputs.directory.empty()) {
-    report.write_json(std::filesystem::path(options.outputs.directory) / "summary.json", description);
+    run.report.write_json(std::filesystem::path(options.outputs.directory) / "summary.json", description);
   }
-  std::printf("%s: %s\n", description.c_str(), report.summary_line().c_str());
-  if (!source_error.empty()) throw Error(source_error);
-  if (stop.requested() && !source.is_live()) {
+  std::printf("%s: %s\n", description.c_str(), run.report.summary_line().c_str());
+  if (!run.source_error.empty()) throw Error(run.source_error);
+  if (run.interrupted && !source.is_live()) {
     const auto total = source.frame_count();
-    spdlog::warn("interrupted after {} of {} frames", report.frames().size(), total ? std::to_string(*total) : "?");
+    spdlog::warn("interrupted after {} of {} frames", run.report.frames().size(), total ? std::to_string(*total) : "?");
     return 130;
   }
   return 0;

@@ -1,0 +1,39 @@
+#pragma once
+// SOURCE on the command line -> a FrameSource: an .oni recording, a device URI,
+// or point cloud files.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lccp/capture/frame_source.hpp"
+
+namespace lccp::app {
+
+enum class SourceKind {
+  recording,    // one .oni file: every frame in order, or paced by its timestamps (realtime)
+  device,       // one OpenNI2 device URI (anything with "://", e.g. virtual://synthetic): live
+  cloud_files,  // .pcd / .ply files and folders of them, in order
+};
+
+struct SourceOptions {
+  std::optional<std::uint64_t> max_frames;  // stop after this many frames
+  std::optional<double> max_seconds;        // stop this long after the first frame was asked for
+  bool realtime = false;                    // recordings: pace by timestamps (a device always is)
+};
+
+// What the arguments name. Throws lccp::Error (one line) for no argument, a
+// URI or .oni file given with anything else, or a file that is none of .oni,
+// .pcd, .ply.
+SourceKind source_kind(const std::vector<std::string>& specs);
+
+// "recording", "device" or "cloud files".
+const char* to_string(SourceKind kind);
+
+// Opens the source the arguments name. Throws lccp::Error (one line, naming
+// the argument) for a missing path, a folder without clouds, an unreadable
+// recording, a device that does not answer, or --realtime with cloud files.
+std::unique_ptr<FrameSource> open_frame_source(const std::vector<std::string>& specs, const SourceOptions& options);
+
+}  // namespace lccp::app
