@@ -16,6 +16,7 @@
 #include "lccp/core/back_projection.hpp"
 #include "lccp/error.hpp"
 #include "lccp/synthetic/tabletop_scene.hpp"
+#include "expect_error.hpp"
 #include "test_files.hpp"
 
 namespace lccp {
@@ -25,18 +26,7 @@ namespace fs = std::filesystem;
 
 const fs::path kData = LCCP_TEST_DATA_DIR;
 
-// Expects an lccp::Error whose one-line message contains every part.
-template <typename Action>
-void expect_error(Action&& action, std::initializer_list<std::string> parts) {
-  try {
-    action();
-    ADD_FAILURE() << "no lccp::Error thrown";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
-  }
-}
+using test::expect_lccp_error;
 
 // --- depth modes --------------------------------------------------------------------
 
@@ -52,7 +42,7 @@ TEST(DepthModes, NearestSizeFirstThenRate) {
 }
 
 TEST(DepthModes, NoModeIsAnError) {
-  expect_error([] { nearest_depth_mode({}, {}); }, {"no video mode"});
+  expect_lccp_error([] { nearest_depth_mode({}, {}); }, {"no video mode"});
 }
 
 // --- back-projection ----------------------------------------------------------------
@@ -113,10 +103,10 @@ TEST(BackProjection, RejectsAnImageWithoutFieldOfViewOrWithTheWrongSize) {
   DepthImage image{4, 3, 1.0f, 0.8f, std::vector<std::uint16_t>(12, 1000)};
   EXPECT_EQ(back_project(image).size(), 12u);
   image.depth_mm.pop_back();
-  expect_error([&] { back_project(image); }, {"4x3", "11 pixels"});
+  expect_lccp_error([&] { back_project(image); }, {"4x3", "11 pixels"});
   image.depth_mm.push_back(1000);
   image.horizontal_fov_rad = 0;
-  expect_error([&] { back_project(image); }, {"field of view"});
+  expect_lccp_error([&] { back_project(image); }, {"field of view"});
 }
 
 // --- recordings of the virtual sensor -----------------------------------------------
@@ -230,9 +220,9 @@ TEST_F(RecordingTest, TruncatedRecordingFailsWithinTheStallTimeout) {
 }
 
 TEST(Recording, MissingOrWrongFilesAreNamed) {
-  expect_error([] { open_recording("/nonexistent/x.oni"); }, {"/nonexistent/x.oni", "no such file"});
-  expect_error([] { open_recording(kData); }, {"not a file"});
-  expect_error([] { open_recording(kData / "mosd_test2.pcd"); }, {"mosd_test2.pcd", "not an .oni recording"});
+  expect_lccp_error([] { open_recording("/nonexistent/x.oni"); }, {"/nonexistent/x.oni", "no such file"});
+  expect_lccp_error([] { open_recording(kData); }, {"not a file"});
+  expect_lccp_error([] { open_recording(kData / "mosd_test2.pcd"); }, {"mosd_test2.pcd", "not an .oni recording"});
 }
 
 // --- live devices -------------------------------------------------------------------
@@ -262,7 +252,7 @@ TEST(LiveDevice, DisappearingDeviceIsAnErrorNamingIt) {
   const auto source = open_device(options);
   int frames = 0;
   const auto start = std::chrono::steady_clock::now();
-  expect_error(
+  expect_lccp_error(
       [&] {
         while (source->next()) ++frames;
       },
@@ -274,9 +264,9 @@ TEST(LiveDevice, DisappearingDeviceIsAnErrorNamingIt) {
 TEST(LiveDevice, UriWithoutDeviceIsAnError) {
   LiveOptions options;
   options.uri = "virtual://no-such-scene";
-  expect_error([&] { open_device(options); }, {"cannot open device", "virtual://no-such-scene"});
+  expect_lccp_error([&] { open_device(options); }, {"cannot open device", "virtual://no-such-scene"});
   options.uri = "usb://0000/0000";
-  expect_error([&] { open_device(options); }, {"cannot open device", "usb://0000/0000"});
+  expect_lccp_error([&] { open_device(options); }, {"cannot open device", "usb://0000/0000"});
 }
 
 // --- cloud files --------------------------------------------------------------------
@@ -295,9 +285,9 @@ TEST(CloudFiles, DirectoryGivesItsCloudsSortedByName) {
 }
 
 TEST(CloudFiles, MissingPathOrEmptyDirectoryIsAnError) {
-  expect_error([] { open_cloud_files({"/nonexistent/clouds"}); }, {"/nonexistent/clouds", "no such file"});
+  expect_lccp_error([] { open_cloud_files({"/nonexistent/clouds"}); }, {"/nonexistent/clouds", "no such file"});
   const fs::path empty = test::scratch_dir("lccp_capture");
-  expect_error([&] { open_cloud_files({empty}); }, {"holds no .pcd or .ply file"});
+  expect_lccp_error([&] { open_cloud_files({empty}); }, {"holds no .pcd or .ply file"});
 }
 
 }  // namespace

@@ -149,4 +149,29 @@ inline double json_number(const std::string& json, const std::string& key) {
   return std::stod(match[1]);
 }
 
+// A test that runs the binary, with a fresh scratch folder: work/ for the test's
+// files, capture/ for the runs' stdout and stderr; removed afterwards.
+class LccpBinaryTest : public ::testing::Test {
+ protected:
+  explicit LccpBinaryTest(std::string prefix) : prefix_(std::move(prefix)) {}
+
+  void SetUp() override {
+    root_ = scratch_dir(prefix_);
+    work_ = root_ / "work";
+    capture_ = root_ / "capture";
+    fs::create_directories(work_);
+    fs::create_directories(capture_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+  RunResult run(const std::vector<std::string>& args, int timeout_seconds = 60) {
+    return run_lccp(capture_, args, timeout_seconds);
+  }
+
+  std::string prefix_;
+  fs::path root_, work_, capture_;
+};
+
 }  // namespace lccp::test

@@ -73,22 +73,9 @@ std::string ascii_pcd(const std::vector<std::string>& fields, std::uint32_t widt
 
 // Each test gets a fresh folder: `work_` holds inputs the test writes and the
 // outputs lccp writes; the captured stdout/stderr live beside it.
-class CliTest : public ::testing::Test {
+class CliTest : public LccpBinaryTest {
  protected:
-  void SetUp() override {
-    root_ = scratch_dir("lccp_cli");
-    work_ = root_ / "work";
-    capture_ = root_ / "capture";
-    fs::create_directories(work_);
-    fs::create_directories(capture_);
-  }
-
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-
-  RunResult run(const std::vector<std::string>& args) { return run_lccp(capture_, args); }
+  CliTest() : LccpBinaryTest("lccp_cli") {}
 
   fs::path out_pcd() const { return work_ / "out.pcd"; }
   fs::path out_png() const { return work_ / "out.png"; }
@@ -115,7 +102,6 @@ class CliTest : public ::testing::Test {
     return r.out;
   }
 
-  fs::path root_, work_, capture_;
 };
 
 // --- A. bad inputs: one line, exit 1, nothing written ------------------------------

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.hpp"
 #include "test_files.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/cloud_io.hpp"
@@ -35,22 +36,10 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 fs::path scratch_dir() { return test::scratch_dir("lccp_io"); }
 
-
-
-// Expects an lccp::Error whose message is one line containing every part.
-void expect_error(const std::function<void()>& action, std::initializer_list<std::string> parts) {
-  try {
-    action();
-    ADD_FAILURE() << "no lccp::Error thrown";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
-  }
-}
+using test::expect_lccp_error;
 
 void expect_read_error(const fs::path& path, const std::string& problem) {
-  expect_error([&] { read_cloud(path); }, {path.filename().string(), problem});
+  expect_lccp_error([&] { read_cloud(path); }, {path.filename().string(), problem});
 }
 
 // Reads a truncated copy: must throw lccp::Error (or, if allowed, succeed), never crash.
@@ -434,7 +423,7 @@ TEST(IoWrite, LabelPngOfMosdScene) {
 TEST(IoWrite, LabelPngNeedsOrganizedCloud) {
   const PointCloud cloud = small_cloud(12, 1, false);
   const fs::path path = scratch_dir() / "flat.png";
-  expect_error([&] { write_label_png(path, cloud, small_labels(cloud)); },
+  expect_lccp_error([&] { write_label_png(path, cloud, small_labels(cloud)); },
                {"flat.png", "a label image needs an organized cloud"});
   EXPECT_FALSE(fs::exists(path));
 }
@@ -443,8 +432,8 @@ TEST(IoWrite, LabelCountMustMatch) {
   const PointCloud cloud = small_cloud(4, 2, true);
   const fs::path dir = scratch_dir();
   const Labels short_labels(cloud.size() - 1, 1);
-  expect_error([&] { write_labelled_pcd(dir / "a.pcd", cloud, short_labels); }, {"a.pcd", "labels"});
-  expect_error([&] { write_label_png(dir / "a.png", cloud, short_labels); }, {"a.png", "labels"});
+  expect_lccp_error([&] { write_labelled_pcd(dir / "a.pcd", cloud, short_labels); }, {"a.pcd", "labels"});
+  expect_lccp_error([&] { write_label_png(dir / "a.png", cloud, short_labels); }, {"a.png", "labels"});
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
@@ -453,8 +442,8 @@ TEST(IoWrite, MissingFolderLeavesNothing) {
   const Labels labels = small_labels(cloud);
   const fs::path dir = scratch_dir();
   const fs::path missing = dir / "no_such_folder";
-  expect_error([&] { write_labelled_pcd(missing / "out.pcd", cloud, labels); }, {"out.pcd", "does not exist"});
-  expect_error([&] { write_label_png(missing / "out.png", cloud, labels); }, {"out.png", "does not exist"});
+  expect_lccp_error([&] { write_labelled_pcd(missing / "out.pcd", cloud, labels); }, {"out.pcd", "does not exist"});
+  expect_lccp_error([&] { write_label_png(missing / "out.png", cloud, labels); }, {"out.png", "does not exist"});
   EXPECT_FALSE(fs::exists(missing));
   EXPECT_TRUE(fs::is_empty(dir));
 }
@@ -465,8 +454,8 @@ TEST(IoWrite, FailedRenameLeavesNoTempFile) {
   const fs::path dir = scratch_dir();
   fs::create_directory(dir / "taken.pcd");  // a folder where the file should go
   fs::create_directory(dir / "taken.png");
-  expect_error([&] { write_labelled_pcd(dir / "taken.pcd", cloud, labels); }, {"taken.pcd", "cannot write"});
-  expect_error([&] { write_label_png(dir / "taken.png", cloud, labels); }, {"taken.png", "cannot write"});
+  expect_lccp_error([&] { write_labelled_pcd(dir / "taken.pcd", cloud, labels); }, {"taken.pcd", "cannot write"});
+  expect_lccp_error([&] { write_label_png(dir / "taken.png", cloud, labels); }, {"taken.png", "cannot write"});
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());

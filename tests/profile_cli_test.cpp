@@ -48,17 +48,12 @@ Latency latency(const std::string& report, const std::string& row) {
           json_number(object, "max")};
 }
 
-class ProfileCliTest : public ::testing::Test {
+class ProfileCliTest : public LccpBinaryTest {
  protected:
+  ProfileCliTest() : LccpBinaryTest("lccp_profile_cli") {}
   void SetUp() override {
-    root_ = scratch_dir("lccp_profile_cli");
+    LccpBinaryTest::SetUp();
     out_ = root_ / "out";
-    capture_ = root_ / "capture";
-    fs::create_directories(capture_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
   }
   RunResult profile(std::vector<std::string> args, int timeout_seconds = 60) {
     args.insert(args.begin(), "profile");
@@ -84,7 +79,7 @@ class ProfileCliTest : public ::testing::Test {
     return lines.size() - 1;
   }
 
-  fs::path root_, out_, capture_;
+  fs::path out_;
 };
 
 TEST_F(ProfileCliTest, RecordingGivesTheReportsForEveryFrame) {

@@ -44,8 +44,10 @@ std::pair<std::uint64_t, std::uint64_t> index_and_timestamp(const std::string& n
 }
 
 // One recording of the virtual sensor's synthetic scene, made once with `lccp record`.
-class StreamCliTest : public ::testing::Test {
+class StreamCliTest : public LccpBinaryTest {
  protected:
+  StreamCliTest() : LccpBinaryTest("lccp_stream_cli") {}
+
   static constexpr int kRecordedFrames = 15;
 
   static void SetUpTestSuite() {
@@ -63,20 +65,6 @@ class StreamCliTest : public ::testing::Test {
   }
   static fs::path recording() { return *shared_ / "synthetic.oni"; }
 
-  void SetUp() override {
-    root_ = scratch_dir("lccp_stream_cli");
-    work_ = root_ / "work";
-    capture_ = root_ / "capture";
-    fs::create_directories(work_);
-    fs::create_directories(capture_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-  RunResult run(const std::vector<std::string>& args, int timeout_seconds = 60) {
-    return run_lccp(capture_, args, timeout_seconds);
-  }
   // Fails within the error timeout: exit 1, one line naming every phrase, no crash.
   void expect_quick_error(const std::vector<std::string>& args, std::initializer_list<std::string> phrases) {
     expect_error(run(args, kErrorTimeoutSeconds), phrases);
@@ -84,7 +72,6 @@ class StreamCliTest : public ::testing::Test {
 
   static inline fs::path* shared_ = nullptr;
   static inline RunResult* record_result_ = nullptr;
-  fs::path root_, work_, capture_;
 };
 
 TEST_F(StreamCliTest, RecordWritesTheFramesAskedFor) {
