@@ -43,6 +43,7 @@
 #include "lccp/frame.hpp"
 #include "lccp/pipeline/pipeline.hpp"
 #include "pcl_reference.hpp"
+#include "statistics.hpp"
 
 namespace {
 
@@ -111,31 +112,10 @@ class MemorySource final : public lccp::FrameSource {
 // ---------------------------------------------------------------------------------------
 // Statistics
 
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// Nearest rank: the smallest value with at least p % of the values at or below it.
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
-double mean(const std::vector<double>& values) {
-  if (values.empty()) return 0;
-  double sum = 0;
-  for (double v : values) sum += v;
-  return sum / static_cast<double>(values.size());
-}
+using lccp::perf::mean;
+using lccp::perf::median;
+using lccp::perf::ms_since;
+using lccp::perf::percentile;
 
 // User + system CPU seconds of this process so far.
 double cpu_seconds() {

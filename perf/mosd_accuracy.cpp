@@ -32,6 +32,7 @@
 #include "lccp/io/config_file.hpp"
 #include "lccp/metrics/scores.hpp"
 #include "pcl_reference.hpp"
+#include "statistics.hpp"
 
 namespace {
 
@@ -88,23 +89,9 @@ struct SceneResult {
   MethodRun& run(Method m) { return runs[static_cast<int>(m)]; }
 };
 
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
-double mean(const std::vector<double>& values) {
-  if (values.empty()) return 0;
-  double sum = 0;
-  for (double v : values) sum += v;
-  return sum / static_cast<double>(values.size());
-}
+using lccp::perf::mean;
+using lccp::perf::median;
+using lccp::perf::ms_since;
 
 std::string fmt(const char* format, double value) {
   char buf[64];
