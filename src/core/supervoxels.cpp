@@ -209,7 +209,9 @@ class Grower {
   // smaller id), with its distance; kNone if every neighbour is v's own or free.
   std::pair<std::uint32_t, float> nearest_other(std::size_t v) const {
     // Gather the neighbours' foreign owners without branching (boundaries make
-    // branches unpredictable), then measure each distinct one once.
+    // branches unpredictable), then measure each of them, skipping repeats of
+    // the previous one (neighbours of one owner come in runs; measuring a
+    // repeat again would not change the result).
     const std::uint32_t current = owner_[v];
     std::array<std::uint32_t, 26> foreign;
     std::size_t count = 0;
@@ -222,7 +224,7 @@ class Grower {
     float best_distance = kUnreached;
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t k = foreign[i];
-      if (std::find(foreign.begin(), foreign.begin() + i, k) != foreign.begin() + i) continue;
+      if (i > 0 && foreign[i - 1] == k) continue;
       const float d = distance(v, centres_[k]);
       if (d < best_distance || (d == best_distance && k < best)) {
         best = k;
