@@ -191,6 +191,61 @@ TEST(Voxelize, HandCloud26Neighbourhood) {
   EXPECT_TRUE(row(g.neighbors, v[H::E]).empty());          // two cells from B
 }
 
+// The 26-neighbourhood against a brute-force search over the voxels' cells
+// (each voxel's cell from its first point, floor(p / v) with 5 mm cubes).
+void expect_brute_force_neighbourhoods(const PointCloud& cloud) {
+  constexpr float kVoxel = 0.005f;
+  const VoxelGrid g = voxelize(cloud, euclidean(kVoxel));
+  check_structure(cloud, g);
+  std::vector<Eigen::Array3i> cell(g.size());
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    cell[v] = (cloud.points[*g.points.begin(v)] / kVoxel).array().floor().cast<int>();
+  }
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    std::vector<std::uint32_t> expected;
+    for (std::size_t u = 0; u < g.size(); ++u) {
+      if (u != v && ((cell[u] - cell[v]).abs() <= 1).all()) expected.push_back(static_cast<std::uint32_t>(u));
+    }
+    ASSERT_EQ(row(g.neighbors, v), expected) << "voxel " << v;
+  }
+}
+
+TEST(Voxelize, NeighbourhoodsEqualBruteForceOnACompactCloud) {
+  // 4000 random points in a 6 cm box: few cell rows per voxel (the dense row table).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 0.06f);
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 4000; ++i) pts.emplace_back(0.2f + u(rng), -0.3f + u(rng), 1.0f + u(rng));
+  expect_brute_force_neighbourhoods(test::unorganized(pts));
+}
+
+TEST(Voxelize, NeighbourhoodsEqualBruteForceOnASolidBlockWithLongRows) {
+  // Every cell of a 6 x 6 x 12 block occupied: inner voxels have all 26
+  // neighbours and their rows hold more voxels beyond z +- 1.
+  std::vector<Eigen::Vector3f> pts;
+  for (int x = 0; x < 6; ++x)
+    for (int y = 0; y < 6; ++y)
+      for (int z = 0; z < 12; ++z) pts.emplace_back(0.0025f + 0.005f * x, 0.0025f + 0.005f * y, 1.0025f + 0.005f * z);
+  const PointCloud cloud = test::unorganized(pts);
+  expect_brute_force_neighbourhoods(cloud);
+  const VoxelGrid g = voxelize(cloud, euclidean(0.005f));
+  const auto inner = std::count_if(g.neighbors.offsets.begin(), g.neighbors.offsets.end() - 1,
+                                   [&, v = std::size_t{0}](std::uint32_t) mutable { return g.neighbors.count(v++) == 26; });
+  EXPECT_EQ(inner, 4 * 4 * 10);
+}
+
+TEST(Voxelize, NeighbourhoodsEqualBruteForceOnAWideSparseCloud) {
+  // Clusters 40 m apart at 5 mm voxels: about 10^8 cell rows for a few hundred
+  // voxels, so rows are searched rather than tabled.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 0.03f);
+  std::vector<Eigen::Vector3f> pts;
+  for (const Eigen::Vector3f& corner : {Eigen::Vector3f(-20, -20, 1), Eigen::Vector3f(20, 20, 2), Eigen::Vector3f(0, 0, 1.5f)}) {
+    for (int i = 0; i < 300; ++i) pts.push_back(corner + Eigen::Vector3f(u(rng), u(rng), u(rng)));
+  }
+  expect_brute_force_neighbourhoods(test::unorganized(pts));
+}
+
 TEST(Voxelize, VoxelSizeIsUsed) {
   // With 10 mm voxels (each covers 2 x 2 x 2 of the 5 mm cells: the bases 0.10/0.20/1.00
   // are multiples of 10 mm, and the anchor at +2 mm is still the minimum, so binning from

@@ -29,6 +29,8 @@ class CellKeys {
     return static_cast<std::uint64_t>((static_cast<std::int64_t>(dx) * extent_.y() + dy) * extent_.z() + dz);
   }
   int key_bits() const { return key_bits_; }
+  // Cells along each axis of the padded box (0: x, 1: y, 2: z).
+  std::uint64_t extent(int axis) const { return extent_[axis]; }
 
  private:
   Cell origin_;

@@ -166,35 +166,76 @@ void compute_voxel_means(const PointCloud& cloud, VoxelGrid& grid) {
   });
 }
 
-// 26-neighbourhood by walking the sorted keys: for each of the 9 (dx, dy) rows
-// a cursor only moves forward, since key + offset grows with key.
-void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys& keys, CompressedRows& neighbors) {
-  constexpr std::size_t kMaxNeighbors = 26;
-  const std::size_t n = voxel_keys.size();
-  const auto slots = std::make_unique_for_overwrite<std::uint32_t[]>(n * kMaxNeighbors);
-  std::vector<std::uint32_t> counts(n + 1, 0);
-  std::array<std::uint64_t, 9> row_offsets;
-  for (int dx = -1, r = 0; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) row_offsets[r++] = keys.offset(dx, dy, 0);
-  }
-  detail::parallel_ranges(n, [&](const auto& range) {
-    std::array<std::size_t, 9> cursor;
-    for (std::size_t r = 0; r < 9; ++r) {
-      const std::uint64_t first = voxel_keys[range.begin()] + row_offsets[r] - 1;
-      cursor[r] = std::lower_bound(voxel_keys.begin(), voxel_keys.end(), first) - voxel_keys.begin();
-    }
-    for (std::size_t v = range.begin(); v < range.end(); ++v) {
-      std::uint32_t* out = slots.get() + v * kMaxNeighbors;
-      std::uint32_t count = 0;
-      for (std::size_t r = 0; r < 9; ++r) {
-        const std::uint64_t centre = voxel_keys[v] + row_offsets[r];
-        while (cursor[r] < n && voxel_keys[cursor[r]] < centre - 1) ++cursor[r];
-        for (std::size_t u = cursor[r]; u < n && voxel_keys[u] <= centre + 1; ++u) {
-          if (u != v) out[count++] = static_cast<std::uint32_t>(u);
+// Voxels sorted by key come grouped by (x, y) row of cells, ordered by z
+// within a row. Per voxel its row id (x * extent_y + y) and z, and for any row
+// id the first voxel at or after it: a dense table when the box has few rows
+// for its voxels (camera cells, table-top scenes), else a search of the
+// occupied rows.
+class CellRows {
+ public:
+  CellRows(const std::vector<std::uint64_t>& voxel_keys, const CellKeys& keys)
+      : row_of_(voxel_keys.size()), z_of_(voxel_keys.size()) {
+    const std::uint64_t extent_z = keys.extent(2);
+    detail::parallel_for_each_index(voxel_keys.size(), [&](std::size_t v) {
+      row_of_[v] = voxel_keys[v] / extent_z;
+      z_of_[v] = static_cast<std::uint32_t>(voxel_keys[v] - row_of_[v] * extent_z);
+    });
+    const std::uint64_t rows = keys.extent(0) * keys.extent(1);
+    if (rows <= kDenseRowsPerVoxel * voxel_keys.size() + kDenseRowsAlways) {
+      first_.assign(rows + 1, 0);  // voxels per row, then an exclusive prefix sum
+      for (const std::uint64_t row : row_of_) ++first_[row + 1];
+      for (std::uint64_t r = 0; r < rows; ++r) first_[r + 1] += first_[r];
+    } else {
+      for (std::uint32_t v = 0; v < row_of_.size(); ++v) {
+        if (occupied_.empty() || row_of_[v] != occupied_.back()) {
+          occupied_.push_back(row_of_[v]);
+          first_.push_back(v);
         }
       }
-      counts[v + 1] = count;
+      first_.push_back(static_cast<std::uint32_t>(row_of_.size()));
     }
+  }
+
+  std::uint64_t row_of(std::size_t v) const { return row_of_[v]; }
+  std::uint32_t z_of(std::size_t v) const { return z_of_[v]; }
+  std::uint32_t first_voxel_from(std::uint64_t row) const {
+    if (occupied_.empty()) return first_[row];
+    return first_[std::lower_bound(occupied_.begin(), occupied_.end(), row) - occupied_.begin()];
+  }
+
+ private:
+  static constexpr std::uint64_t kDenseRowsPerVoxel = 8;
+  static constexpr std::uint64_t kDenseRowsAlways = std::uint64_t{1} << 20;
+  std::vector<std::uint64_t> row_of_;
+  std::vector<std::uint32_t> z_of_;
+  std::vector<std::uint64_t> occupied_;  // sparse case: occupied row ids, ascending
+  std::vector<std::uint32_t> first_;     // dense: per row id; sparse: per occupied row; + voxel count
+};
+
+// 26-neighbourhood: the neighbours of a voxel in row (x, y) lie in the rows
+// (x + dx, y - 1 .. y + 1), consecutive row ids, at z - 1 .. z + 1. Written
+// unconditionally into a voxel's 27 slots (26 neighbours and a spare that a
+// non-match may overwrite), kept where they match.
+void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys& keys, CompressedRows& neighbors) {
+  constexpr std::size_t kSlots = 27;
+  const std::size_t n = voxel_keys.size();
+  const CellRows rows(voxel_keys, keys);
+  const std::uint64_t extent_y = keys.extent(1);
+  const auto slots = std::make_unique_for_overwrite<std::uint32_t[]>(n * kSlots);
+  std::vector<std::uint32_t> counts(n + 1, 0);
+  detail::parallel_for_each_index(n, [&](std::size_t v) {
+    std::uint32_t* out = slots.get() + v * kSlots;
+    std::uint32_t count = 0;
+    const std::uint32_t z = rows.z_of(v);
+    for (std::uint64_t dx = 0; dx < 3; ++dx) {
+      const std::uint64_t first_row = rows.row_of(v) + dx * extent_y - extent_y - 1;
+      const std::uint32_t end = rows.first_voxel_from(first_row + 3);
+      for (std::uint32_t u = rows.first_voxel_from(first_row); u < end; ++u) {
+        out[count] = u;
+        count += (rows.z_of(u) + 1 - z <= 2) & (u != v);  // |dz| <= 1, as unsigned
+      }
+    }
+    counts[v + 1] = count;
   });
   neighbors.offsets.resize(n + 1);
   neighbors.offsets[0] = 0;
@@ -202,7 +243,7 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
   neighbors.items.resize(neighbors.offsets[n]);
   detail::parallel_ranges(n, [&](const auto& range) {
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
-      std::copy_n(slots.get() + v * kMaxNeighbors, neighbors.count(v), neighbors.items.data() + neighbors.offsets[v]);
+      std::copy_n(slots.get() + v * kSlots, neighbors.count(v), neighbors.items.data() + neighbors.offsets[v]);
     }
   });
 }
