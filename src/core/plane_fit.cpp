@@ -10,9 +10,10 @@ namespace lccp::detail {
 namespace {
 
 // Smallest eigenvalue of a symmetric positive semi-definite 3x3 matrix:
-// Newton on its characteristic cubic p(l) = l^3 - c2 l^2 + c1 l - c0 from
-// l = 0. p is increasing and concave on [0, l_min], so the iterates rise
-// monotonically to l_min without overshooting (no trigonometry needed).
+// Halley's method on its characteristic cubic p(l) = l^3 - c2 l^2 + c1 l - c0
+// from l = 0. p is increasing and concave on [0, l_min], where Halley's step
+// is shorter than Newton's, so the iterates rise monotonically to l_min
+// without overshooting, converging cubically (no trigonometry needed).
 double smallest_eigenvalue(const Eigen::Matrix3d& a) {
   const double c2 = a.trace();
   const double c1 = a(0, 0) * a(1, 1) + a(0, 0) * a(2, 2) + a(1, 1) * a(2, 2) - a(0, 1) * a(0, 1) -
@@ -22,8 +23,10 @@ double smallest_eigenvalue(const Eigen::Matrix3d& a) {
   for (int i = 0; i < 32; ++i) {
     const double p = ((l - c2) * l + c1) * l - c0;
     const double slope = (3.0 * l - 2.0 * c2) * l + c1;
-    if (!(slope > 0.0)) break;
-    const double step = -p / slope;
+    const double curvature = 6.0 * l - 2.0 * c2;
+    const double denominator = 2.0 * slope * slope - p * curvature;
+    if (!(slope > 0.0) || !(denominator > 0.0)) break;
+    const double step = -2.0 * p * slope / denominator;
     l += step;
     if (!(step > 1e-12 * c2)) break;
   }
