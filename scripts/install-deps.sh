@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libtbb-dev libpcl-dev libopenni2-dev
   libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -1,0 +1,54 @@
+#pragma once
+// Files that appear whole or not at all: the one way every writer in LCCP
+// Stream creates a file.
+//
+// A PendingFile is an unnamed file in the target's folder (Linux O_TMPFILE,
+// open(2)); it gets the target's name only on commit(). If the process dies
+// first (an exception, Ctrl-C, kill -9), the kernel frees it and nothing is
+// left behind. Where the file system has no O_TMPFILE, a file with an
+// unpredictable name is created exclusively (O_CREAT | O_EXCL | O_NOFOLLOW)
+// instead and removed if not committed. Neither way ever follows a symlink
+// planted at a temporary name, and committing replaces a symlink at the
+// target rather than writing through it.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string_view>
+
+namespace lccp {
+
+class PendingFile {
+ public:
+  // Throws lccp::Error naming the target if its folder is missing or not writable.
+  explicit PendingFile(std::filesystem::path target);
+  ~PendingFile();  // discards the file unless committed
+  PendingFile(PendingFile&& other) noexcept;
+  PendingFile& operator=(PendingFile&&) = delete;
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+  void write(std::span<const std::uint8_t> bytes);  // throws lccp::Error on a short write
+  void write(std::string_view text);
+  // Gives the file its target name, atomically replacing any file there.
+  void commit();
+
+  const std::filesystem::path& target() const { return target_; }
+  int descriptor() const { return fd_; }
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path named_;  // the temporary name, when O_TMPFILE is not available
+  int fd_ = -1;
+  bool committed_ = false;
+};
+
+// Writes bytes to path so that the file appears only when complete.
+void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+void write_file_atomically(const std::filesystem::path& path, std::string_view text);
+
+// Commits files written together (one frame's outputs) back to back, after
+// all of them are complete: either none of them exists or all do, but for
+// the few microseconds between the renames.
+void commit_together(std::span<PendingFile> files);
+
+}  // namespace lccp
