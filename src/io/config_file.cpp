@@ -2,9 +2,11 @@
 
 #include <array>
 #include <charconv>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string_view>
+#include <system_error>
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,6 +14,8 @@
 
 namespace lccp {
 namespace {
+
+namespace fs = std::filesystem;
 
 // One configurable parameter: its key (unit in the name), what it means, and
 // how to read and show it.
@@ -22,11 +26,20 @@ struct Key {
   std::function<std::string(const LccpConfig&)> get;
 };
 
+// User text in a message, kept on one short line.
+std::string printable(std::string_view text) {
+  std::string out(text.substr(0, 60));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return text.size() > 60 ? out + "..." : out;
+}
+
 float parse_float(std::string_view key, const std::string& text) {
   float value = 0.0f;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc{} || end != text.data() + text.size()) {
-    throw Error("config key '" + std::string(key) + "': '" + text + "' is not a number");
+    throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not a number");
   }
   return value;
 }
@@ -35,7 +48,7 @@ std::uint32_t parse_count(std::string_view key, const std::string& text) {
   std::uint32_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc{} || end != text.data() + text.size()) {
-    throw Error("config key '" + std::string(key) + "': '" + text + "' is not a whole number >= 0");
+    throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not a whole number >= 0");
   }
   return value;
 }
@@ -43,14 +56,14 @@ std::uint32_t parse_count(std::string_view key, const std::string& text) {
 bool parse_bool(std::string_view key, const std::string& text) {
   if (text == "true" || text == "on" || text == "1") return true;
   if (text == "false" || text == "off" || text == "0") return false;
-  throw Error("config key '" + std::string(key) + "': '" + text + "' is not true or false");
+  throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not true or false");
 }
 
 Binning parse_binning(std::string_view key, const std::string& text) {
   if (text == "auto") return Binning::automatic;
   if (text == "euclidean") return Binning::euclidean;
   if (text == "camera") return Binning::camera;
-  throw Error("config key '" + std::string(key) + "': '" + text + "' is not auto, euclidean or camera");
+  throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not auto, euclidean or camera");
 }
 
 std::string show(float value) {
@@ -111,44 +124,71 @@ void set_key(LccpConfig& config, const std::string& name, const std::string& val
   for (const Key& key : keys()) {
     if (key.name == name) return key.set(config, value);
   }
-  throw Error("unknown config key '" + name + "' (known: " + known_keys() + ")");
+  throw Error("unknown config key '" + printable(name) + "' (known: " + known_keys() + ")");
+}
+
+constexpr std::size_t kMaxConfigBytes = 1 << 20;  // presets are a few hundred bytes
+
+std::string at_line(const YAML::Mark& mark) {
+  return mark.line >= 0 ? " (line " + std::to_string(mark.line + 1) + ")" : "";
+}
+
+// One `key: value` entry: both must be plain scalars.
+void apply_entry(LccpConfig& config, const YAML::Node& key, const YAML::Node& value, const std::string& file) {
+  if (!key.IsScalar()) throw Error(file + ": a config key must be a plain name, not a list or map" + at_line(key.Mark()));
+  const std::string name = key.Scalar();
+  if (!value.IsScalar()) throw Error(file + ": config key '" + printable(name) + "' needs a single value");
+  try {
+    set_key(config, name, value.Scalar());
+  } catch (const Error& e) {
+    throw Error(file + ": " + e.what());
+  }
+}
+
+LccpConfig config_from_yaml(const YAML::Node& root, const std::string& file) {
+  LccpConfig config;
+  if (root.IsNull()) return config;
+  if (!root.IsMap()) throw Error(file + ": expected a map of key: value");
+  for (const auto& entry : root) apply_entry(config, entry.first, entry.second, file);
+  try {
+    validate(config);
+  } catch (const Error& e) {
+    throw Error(file + ": " + e.what());
+  }
+  return config;
 }
 
 }  // namespace
 
+LccpConfig parse_config(std::string_view yaml_text, std::string_view name) {
+  const std::string file(name);
+  try {
+    return config_from_yaml(YAML::Load(std::string(yaml_text)), file);
+  } catch (const Error&) {
+    throw;
+  } catch (const YAML::Exception& e) {  // the parser's, or a node conversion's
+    throw Error(file + ": not valid YAML" + at_line(e.mark) + " (" + printable(e.msg) + ")");
+  }
+}
+
 LccpConfig load_config(const std::filesystem::path& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path.string());
-  } catch (const YAML::BadFile&) {
-    throw Error(path.string() + ": cannot open config file");
-  } catch (const YAML::Exception& e) {
-    throw Error(path.string() + ": not valid YAML (line " + std::to_string(e.mark.line + 1) + ")");
-  }
-  LccpConfig config;
-  if (root.IsNull()) return config;
-  if (!root.IsMap()) throw Error(path.string() + ": expected a map of key: value");
-  for (const auto& entry : root) {
-    const std::string name = entry.first.as<std::string>();
-    if (!entry.second.IsScalar()) throw Error(path.string() + ": config key '" + name + "' needs a single value");
-    try {
-      set_key(config, name, entry.second.as<std::string>());
-    } catch (const Error& e) {
-      throw Error(path.string() + ": " + e.what());
-    }
-  }
-  try {
-    validate(config);
-  } catch (const Error& e) {
-    throw Error(path.string() + ": " + e.what());
-  }
-  return config;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(path.string() + ": cannot open config file (a directory)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path.string() + ": cannot open config file");
+  std::string text(kMaxConfigBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw Error(path.string() + ": cannot read config file");
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxConfigBytes)
+    throw Error(path.string() + ": config file larger than " + std::to_string(kMaxConfigBytes) + " bytes");
+  return parse_config(text, path.string());
 }
 
 void apply_setting(LccpConfig& config, const std::string& key_equals_value) {
   const auto equals = key_equals_value.find('=');
   if (equals == std::string::npos || equals == 0) {
-    throw Error("--set expects key=value, got '" + key_equals_value + "'");
+    throw Error("--set expects key=value, got '" + printable(key_equals_value) + "'");
   }
   set_key(config, key_equals_value.substr(0, equals), key_equals_value.substr(equals + 1));
 }
