@@ -36,12 +36,29 @@ struct FilterConfig {
   std::uint32_t n_filter_supervoxels = 3;  // segments of <= this many supervoxels merge (A.4)
 };
 
+// Bounds on the work one cloud may ask for; a cloud or config beyond them is
+// refused with one line naming the limit (never a crash, hang or silent
+// collapse). Supervoxels and seeds are bounded by max_voxels.
+struct LimitsConfig {
+  std::uint32_t max_points = 50'000'000;  // points per cloud
+  std::uint32_t max_voxels = 20'000'000;  // occupied voxels per cloud
+  std::uint32_t max_growth_passes = 100;  // int(1.8 s / v) - 1; P1 needs 6, P2 13
+  // |x|, |y|, |z| of every finite point. float spacing at 500 m is 61 um, an
+  // 80th of the P1 voxel; validate() keeps it below v / 16 for any v.
+  float max_coordinate_m = 500.0f;
+};
+
 struct LccpConfig {
   VoxelConfig voxels;
   SupervoxelConfig supervoxels;
   ConvexityConfig convexity;
   FilterConfig filter;
+  LimitsConfig limits;
 };
+
+// VCCS's number of growth passes for seed size s and voxel size v: int(1.8 s / v) - 1,
+// at least 1 (PCL's SupervoxelClustering::expandSupervoxels).
+int growth_passes(float seed_size_m, float voxel_size_m);
 
 // Throws lccp::Error naming the first out-of-range field.
 void validate(const LccpConfig& config);

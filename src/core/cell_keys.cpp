@@ -2,21 +2,26 @@
 
 #include <cmath>
 #include <algorithm>
+#include <limits>
 
 #include <tbb/parallel_for.h>
 
 namespace lccp::detail {
 
-CellKeys::CellKeys(const Cell& min_cell, const Cell& max_cell) : origin_(min_cell - 1) {
-  const auto extent = (max_cell - min_cell + 3).cast<std::int64_t>();
-  extent_ = extent.cast<std::uint64_t>();
-  // Keys must stay below 2^62 so that neighbour offsets never overflow.
+CellKeys::CellKeys(const Cell& min_cell, const Cell& max_cell) {
+  // In 64 bits: the span of two ints does not fit in an int.
+  const Eigen::Array3<std::int64_t> low = min_cell.cast<std::int64_t>() - 1;
+  const Eigen::Array3<std::int64_t> extent = max_cell.cast<std::int64_t>() - low + 2;
+  // Cell - origin is taken in int, so each side must fit one; keys must stay
+  // below 2^62 so that neighbour offsets never overflow.
   const double cells = static_cast<double>(extent.x()) * static_cast<double>(extent.y()) *
                        static_cast<double>(extent.z());
-  fits_ = cells < std::ldexp(1.0, 62);
-  if (fits_) {
-    key_bits_ = std::bit_width(extent_.x() * extent_.y() * extent_.z() - 1);
-  }
+  fits_ = (extent > 0).all() && (low >= std::numeric_limits<int>::min()).all() &&
+          (extent < std::numeric_limits<int>::max()).all() && cells < std::ldexp(1.0, 62);
+  if (!fits_) return;
+  origin_ = low.cast<int>();
+  extent_ = extent.cast<std::uint64_t>();
+  key_bits_ = std::bit_width(extent_.x() * extent_.y() * extent_.z() - 1);
 }
 
 PackedKeys packed_keys(const CellKeys& keys, std::size_t item_count) {

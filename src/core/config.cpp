@@ -1,14 +1,16 @@
 #include "lccp/config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "lccp/error.hpp"
 
 namespace lccp {
 namespace {
 
-void require(bool ok, const char* key, const char* rule, double value) {
+void require(bool ok, const char* key, const std::string& rule, double value) {
   if (ok) return;
   std::ostringstream message;
   message << "config key '" << key << "' must be " << rule << " (got " << value << ")";
@@ -16,6 +18,21 @@ void require(bool ok, const char* key, const char* rule, double value) {
 }
 
 bool in_range(float value, float low, float high) { return std::isfinite(value) && value >= low && value <= high; }
+
+void validate_limits(const LccpConfig& c) {
+  const LimitsConfig& l = c.limits;
+  require(l.max_points > 0, "max_points", "> 0", l.max_points);
+  require(l.max_voxels > 0 && l.max_voxels <= (1u << 31), "max_voxels", "in [1, 2^31]", l.max_voxels);
+  require(l.max_growth_passes > 0 && l.max_growth_passes <= 100000u, "max_growth_passes", "in [1, 100000]",
+          l.max_growth_passes);
+  // A float's spacing at range r is r / 2^23; at most v / 16 keeps voxels apart.
+  require(in_range(l.max_coordinate_m, 0.0f, c.voxels.voxel_size_m * 524288.0f) && l.max_coordinate_m > 0.0f,
+          "max_coordinate_m", "> 0 and <= voxel_size_m * 2^19 (float spacing below v/16)", l.max_coordinate_m);
+  const int passes = growth_passes(c.supervoxels.seed_size_m, c.voxels.voxel_size_m);
+  require(passes <= static_cast<int>(l.max_growth_passes), "seed_size_m",
+          "small enough for max_growth_passes (" + std::to_string(l.max_growth_passes) +
+              ") growth passes, int(1.8 s / v) - 1", passes);
+}
 
 }  // namespace
 
@@ -35,6 +52,13 @@ void validate(const LccpConfig& c) {
           c.convexity.sigmoid_slope_per_deg);
   require(c.filter.n_filter_supervoxels <= 1000000u, "n_filter_supervoxels", "<= 1000000",
           c.filter.n_filter_supervoxels);
+  validate_limits(c);
+}
+
+int growth_passes(float seed_size_m, float voxel_size_m) {
+  const float passes = 1.8f * seed_size_m / voxel_size_m;  // float, as the stage always computed it
+  if (!(passes < 1e9f)) return 1'000'000'000;
+  return std::max(1, static_cast<int>(passes) - 1);
 }
 
 }  // namespace lccp

@@ -49,7 +49,7 @@ SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const {
 VoxelizedCloud LccpSegmenter::voxelize_with_normals(const PointCloud& cloud, StageTimes& times) const {
   LapTimer timer;
   VoxelizedCloud out;
-  out.grid = voxelize(cloud, config_.voxels);
+  out.grid = voxelize(cloud, config_.voxels, config_.limits);
   times.voxelize_ms = timer.lap();
   out.normals = estimate_voxel_normals(out.grid);
   times.normals_ms = timer.lap();

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "cell_keys.hpp"
+#include "lccp/error.hpp"
 #include "parallel.hpp"
 
 namespace lccp {
@@ -296,12 +297,16 @@ std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelC
   std::vector<Cell> cell_of_voxel(grid.size());
   Cell min_cell = Cell::Constant(std::numeric_limits<int>::max());
   Cell max_cell = Cell::Constant(std::numeric_limits<int>::min());
+  // |centroid| <= max_coordinate_m <= v * 2^19 and s >= v (validate), so cells fit an int.
   for (std::size_t v = 0; v < grid.size(); ++v) {
     cell_of_voxel[v] = (grid.centroids[v] / seed_size).array().floor().cast<int>();
     min_cell = min_cell.min(cell_of_voxel[v]);
     max_cell = max_cell.max(cell_of_voxel[v]);
   }
   const detail::CellKeys keys(min_cell, max_cell);
+  if (!keys.fits() || !detail::packed_keys(keys, grid.size()).fits()) {
+    throw Error("the cloud spans too many seed cells for its seed size");
+  }
   const SeedCells groups = group_by_seed_cell(cell_of_voxel, keys);
 
   // VCCS keeps a seed if more than 1/20 of a planar slice through the search
@@ -324,7 +329,7 @@ Supervoxels grow_supervoxels(const VoxelGrid& grid, const std::vector<Eigen::Vec
   Grower grower(grid, voxel_normals, config);
   grower.plant(seeds);
   // VCCS: int(1.8 s / v) - 1 passes, enough to cover the seed spacing.
-  const int passes = std::max(1, static_cast<int>(1.8f * config.seed_size_m / voxel_size_m) - 1);
+  const int passes = growth_passes(config.seed_size_m, voxel_size_m);
   for (int pass = 0; pass < passes; ++pass) grower.grow_one_ring();
   grower.absorb_unreached();
   grower.seed_orphan_components();

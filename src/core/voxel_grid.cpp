@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 #include <memory>
 
@@ -31,6 +33,7 @@ struct CellBounds {
                          std::numeric_limits<int>::min()};
   std::size_t count = 0;
   bool behind_sensor = false;  // a finite point at z <= 0 (camera binning impossible)
+  float farthest = 0.0f;       // largest |coordinate| of a finite point
 
   void add(const Cell& c) {
     for (int a = 0; a < 3; ++a) {
@@ -46,6 +49,7 @@ struct CellBounds {
     }
     count += other.count;
     behind_sensor = behind_sensor || other.behind_sensor;
+    farthest = std::max(farthest, other.farthest);
   }
 };
 
@@ -67,8 +71,10 @@ Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning) {
               floor_to_int(p.z() * inverse_size));
 }
 
-// Cells of every point (kInvalidCell where non-finite) and their bounds, in one pass.
-CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binning, std::vector<Cell>& cells) {
+// Cells of every point (kInvalidCell where non-finite) and their bounds, in one
+// pass. Points beyond max_coordinate get no cell; bounds.farthest tells.
+CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binning, float max_coordinate,
+                         std::vector<Cell>& cells) {
   cells.resize(cloud.size());
   const float inverse_size = 1.0f / voxel_size;
   return tbb::parallel_reduce(
@@ -78,6 +84,8 @@ CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binn
           const Eigen::Vector3f& p = cloud.points[i];
           cells[i] = kInvalidCell;
           if (!is_finite(p)) continue;
+          bounds.farthest = std::max(bounds.farthest, p.cwiseAbs().maxCoeff());
+          if (bounds.farthest > max_coordinate) continue;
           if (binning == Binning::camera && !(p.z() > 0.0f)) {
             bounds.behind_sensor = true;
             continue;
@@ -248,21 +256,36 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
   });
 }
 
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+void check_limit(bool ok, const std::string& what, const char* key, double limit) {
+  if (!ok) throw Error(what + ", more than " + key + " (" + format_number(limit) + ")");
+}
+
 }  // namespace
 
-VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config) {
+VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits) {
+  check_limit(cloud.size() <= limits.max_points, "the cloud has " + std::to_string(cloud.size()) + " points",
+              "max_points", limits.max_points);
   // Automatic binning tries the camera transform on organized clouds and falls
   // back to cubes if a point lies behind the sensor.
   Binning binning = config.binning == Binning::automatic && cloud.organized() ? Binning::camera : config.binning;
   if (binning == Binning::automatic) binning = Binning::euclidean;
   std::vector<Cell> cells;
-  CellBounds bounds = compute_cells(cloud, config.voxel_size_m, binning, cells);
+  CellBounds bounds = compute_cells(cloud, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
+  check_limit(bounds.farthest <= limits.max_coordinate_m,
+              "a point lies " + format_number(bounds.farthest) + " m from the origin along an axis",
+              "max_coordinate_m", limits.max_coordinate_m);
   if (bounds.behind_sensor && config.binning == Binning::camera) {
     throw Error("camera binning needs every point at z > 0; use binning: euclidean");
   }
   if (bounds.behind_sensor) {
     binning = Binning::euclidean;
-    bounds = compute_cells(cloud, config.voxel_size_m, binning, cells);
+    bounds = compute_cells(cloud, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
   }
   if (bounds.count == 0) throw Error("the cloud has no finite points");
   const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
@@ -273,6 +296,8 @@ VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config) {
   grid.binning = binning;
   std::vector<std::uint64_t> voxel_keys;
   group_into_voxels(sorted_point_keys(cells, keys, packing, bounds.count), packing, voxel_keys, grid.points);
+  check_limit(voxel_keys.size() <= limits.max_voxels, "the cloud fills " + std::to_string(voxel_keys.size()) + " voxels",
+              "max_voxels", limits.max_voxels);
   compute_voxel_means(cloud, grid);
   find_neighbors(voxel_keys, keys, grid.neighbors);
   return grid;

@@ -88,8 +88,15 @@ Key float_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return show(field(c)); }};
 }
 
-const std::array<Key, 12>& keys() {
-  static const std::array<Key, 12> table{
+// A whole-number parameter, like float_key.
+template <typename Field>
+Key count_key(std::string_view name, Field field, std::string_view meaning) {
+  return {name, meaning, [=](LccpConfig& c, const std::string& t) { field(c) = parse_count(name, t); },
+          [=](const LccpConfig& c) { return std::to_string(field(c)); }};
+}
+
+const std::array<Key, 16>& keys() {
+  static const std::array<Key, 16> table{
       float_key("voxel_size_m", [](auto& c) -> auto& { return c.voxels.voxel_size_m; }, "voxel size v (metres)"),
       Key{"binning", "voxel cells: auto (camera if organized), euclidean or camera",
           [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
@@ -110,6 +117,12 @@ const std::array<Key, 12>& keys() {
             c.filter.n_filter_supervoxels = parse_count("n_filter_supervoxels", t);
           },
           [](const LccpConfig& c) { return std::to_string(c.filter.n_filter_supervoxels); }},
+      count_key("max_points", [](auto& c) -> auto& { return c.limits.max_points; }, "refuse clouds with more points"),
+      count_key("max_voxels", [](auto& c) -> auto& { return c.limits.max_voxels; }, "refuse clouds filling more voxels"),
+      count_key("max_growth_passes", [](auto& c) -> auto& { return c.limits.max_growth_passes; },
+                "refuse seed/voxel sizes needing more growth passes"),
+      float_key("max_coordinate_m", [](auto& c) -> auto& { return c.limits.max_coordinate_m; },
+                "refuse clouds with a finite point farther along an axis (metres)"),
   };
   return table;
 }

@@ -40,7 +40,9 @@ struct VoxelGrid {
 // Binning::automatic means camera cells for an organized cloud whose points all
 // lie in front of the sensor (z > 0), cubes otherwise. Throws lccp::Error when
 // the cloud has no finite point, when camera binning is asked for a point at
-// z <= 0, or when the cloud spans more cells than the integer keys can hold.
-VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config);
+// z <= 0, when the cloud spans more cells than the integer keys can hold, or
+// when it exceeds a limit (more points or voxels than allowed, a finite point
+// beyond max_coordinate_m).
+VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits = {});
 
 }  // namespace lccp
