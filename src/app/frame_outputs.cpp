@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "lccp/error.hpp"
+#include "lccp/io/atomic_file.hpp"
 #include "lccp/io/cloud_io.hpp"
 
 namespace lccp::app {
@@ -46,9 +47,11 @@ void FrameWriter::write(const FrameResult& result) {
   const PointCloud& cloud = result.frame.cloud;
   const Labels no_labels(cloud.size(), 0);
   const Labels& labels = result.segmentation.labels.size() == cloud.size() ? result.segmentation.labels : no_labels;
-  const std::filesystem::path stem = directory_ / frame_output_stem(result.frame);
-  if (options_.pcd()) write_labelled_pcd(stem.string() + ".pcd", cloud, labels);
-  if (options_.png() && cloud.organized()) write_label_png(stem.string() + ".png", cloud, labels);
+  const std::string stem = (directory_ / frame_output_stem(result.frame)).string();
+  std::vector<FileBytes> files;
+  if (options_.pcd()) files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels)});
+  if (options_.png() && cloud.organized()) files.push_back({stem + ".png", encode_label_png(cloud, labels)});
+  write_files_together(files);  // a frame's outputs appear together or not at all
   ++frames_written_;
 }
 

@@ -7,6 +7,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "lccp/io/atomic_file.hpp"
 #include "lccp/io/config_file.hpp"
 
 namespace lccp::app {
@@ -409,7 +410,7 @@ std::string profile_table(const ProfileSetup& setup, const RunReport& report) {
 void write_profile_json(const std::filesystem::path& path, const ProfileSetup& setup, const RunReport& report) {
   const PipelineStats& stats = report.stats();
   const CpuUse& cpu = report.cpu();
-  write_atomically(path, [&](std::ostream& out) {
+  write_file_atomically(path, [&](std::ostream& out) {
     out << "{\n  \"source\": " << json_string(setup.source) << ",\n"
         << "  \"source_kind\": " << json_string(to_string(setup.kind)) << ",\n"
         << "  \"realtime\": " << (setup.realtime ? "true" : "false") << ",\n"
@@ -453,7 +454,7 @@ void write_profile_json(const std::filesystem::path& path, const ProfileSetup& s
 }
 
 void write_frames_csv(const std::filesystem::path& path, const RunReport& report) {
-  write_atomically(path, [&](std::ostream& out) {
+  write_file_atomically(path, [&](std::ostream& out) {
     out << "index,timestamp_us,captured_s,back_projection_ms,voxelize_ms,normals_ms,seeds_ms,growth_ms,adjacency_ms,"
            "classify_ms,label_ms,filter_ms,end_to_end_ms,segments,failed\n";
     for (const FrameRecord& f : report.frames()) {
@@ -467,7 +468,7 @@ void write_frames_csv(const std::filesystem::path& path, const RunReport& report
 }
 
 void write_profile_html(const std::filesystem::path& path, const ProfileSetup& setup, const RunReport& report) {
-  write_atomically(path, [&](std::ostream& out) {
+  write_file_atomically(path, [&](std::ostream& out) {
     out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>LCCP profile: "
         << html_escape(setup.source) << "</title>\n<style>\n" << kStyle << "</style>\n</head>\n<body>\n"
         << "<h1>LCCP profile</h1>\n" << html_summary_table(setup, report) << "<h2>Latency (ms)</h2>\n"

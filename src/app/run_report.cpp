@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "lccp/error.hpp"
+#include "lccp/io/atomic_file.hpp"
 
 namespace lccp::app {
 namespace {
@@ -83,7 +84,7 @@ std::string RunReport::summary_line() const {
 
 void RunReport::write_json(const std::filesystem::path& path, const std::string& source) const {
   const Percentiles latency = end_to_end_ms();
-  write_atomically(path, [&](std::ostream& out) {
+  write_file_atomically(path, [&](std::ostream& out) {
     out << "{\n  \"source\": " << json_string(source) << ",\n"
         << "  \"frames_received\": " << stats_.frames_received << ",\n"
         << "  \"frames_completed\": " << stats_.frames_completed << ",\n"
@@ -113,21 +114,5 @@ std::string json_string(std::string_view text) {
   return quoted + "\"";
 }
 
-void write_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
-  const std::filesystem::path partial = path.string() + ".partial";
-  std::error_code error;
-  try {
-    std::ofstream out(partial);
-    if (out) write(out);
-    out.close();
-    if (out) std::filesystem::rename(partial, path, error);
-    if (out && !error) return;
-  } catch (...) {
-    std::filesystem::remove(partial, error);
-    throw;
-  }
-  std::filesystem::remove(partial, error);
-  throw Error("cannot write " + path.string());
-}
 
 }  // namespace lccp::app

@@ -90,8 +90,5 @@ class RunReport {
 // `text` as a JSON string literal, quotes included.
 std::string json_string(std::string_view text);
 
-// Writes a file so that it appears whole or not at all: into PATH.partial,
-// then renamed over PATH. Throws lccp::Error naming PATH if it cannot be written.
-void write_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace lccp::app

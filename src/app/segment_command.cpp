@@ -5,7 +5,9 @@
 #include "commands.hpp"
 #include "lccp/core/lccp.hpp"
 #include "lccp/error.hpp"
+#include "lccp/io/atomic_file.hpp"
 #include "lccp/io/cloud_io.hpp"
+#include "stop_signal.hpp"
 
 namespace lccp::app {
 namespace {
@@ -28,26 +30,34 @@ void print_summary(const PointCloud& cloud, const SegmentationResult& r) {
       t.seeds_ms, t.growth_ms, t.adjacency_ms, t.classify_ms, t.label_ms, t.filter_ms, t.total_ms());
 }
 
-// Writes every requested output; if one fails, removes the ones already written.
+// The labelled cloud and, if asked, its label image, written together: both
+// appear, or neither does.
 void write_outputs(const SegmentOptions& options, const PointCloud& cloud, const Labels& labels) {
-  std::vector<std::filesystem::path> written;
-  try {
-    write_labelled_pcd(options.output, cloud, labels);
-    written.push_back(options.output);
-    if (!options.png.empty()) write_label_png(options.png, cloud, labels);
-  } catch (...) {
-    for (const auto& path : written) std::filesystem::remove(path);
-    throw;
+  std::vector<FileBytes> files{{options.output, encode_labelled_pcd(cloud, labels)}};
+  if (!options.png.empty()) files.push_back({options.png, encode_label_png(cloud, labels)});
+  write_files_together(files);
+}
+
+// -o or --png naming the input (or the same file by another path) would destroy it.
+void refuse_overwriting_input(const SegmentOptions& options) {
+  for (const std::string& output : {options.output, options.png}) {
+    std::error_code error;
+    if (!output.empty() && std::filesystem::equivalent(options.input, output, error)) {
+      throw Error(output + ": is the input file; choose another output name");
+    }
   }
 }
 
 int run_segment(const SegmentOptions& options) {
+  const StopOnSignal stop;
   const LccpSegmenter segmenter(options.config.resolve());
+  refuse_overwriting_input(options);
   const PointCloud cloud = read_cloud(options.input).cloud;
   if (!options.png.empty() && !cloud.organized()) {
     throw Error(options.input + ": --png needs an organized (image-shaped) cloud");
   }
   const SegmentationResult result = segmenter.segment(cloud);
+  if (stop.requested()) return 130;  // interrupted: nothing written
   write_outputs(options, cloud, result.labels);
   print_summary(cloud, result);
   return 0;

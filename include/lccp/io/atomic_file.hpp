@@ -12,8 +12,11 @@
 // target rather than writing through it.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <iosfwd>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace lccp {
 
@@ -45,10 +48,18 @@ class PendingFile {
 // Writes bytes to path so that the file appears only when complete.
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 void write_file_atomically(const std::filesystem::path& path, std::string_view text);
+// Writes what `write` puts on the stream, likewise (reports: JSON, CSV, HTML).
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
-// Commits files written together (one frame's outputs) back to back, after
-// all of them are complete: either none of them exists or all do, but for
-// the few microseconds between the renames.
-void commit_together(std::span<PendingFile> files);
+// One file of a set written together.
+struct FileBytes {
+  std::filesystem::path path;
+  std::vector<std::uint8_t> bytes;
+};
+
+// Writes a set of files (one frame's outputs) so that none gets its name
+// before all are complete; the names are then given back to back, so the set
+// appears whole but for the microseconds between those renames.
+void write_files_together(std::span<const FileBytes> files);
 
 }  // namespace lccp

@@ -1,0 +1,145 @@
+// PendingFile: O_TMPFILE and linkat(2) where the file system has them (see
+// open(2), "O_TMPFILE"), else an exclusive file with a random name; commit
+// renames over the target (rename(2) replaces the target's directory entry,
+// a symlink included, and never follows it).
+#include "lccp/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <string>
+
+#include "lccp/error.hpp"
+
+namespace lccp {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path folder_of(const fs::path& target) {
+  return target.parent_path().empty() ? fs::path(".") : target.parent_path();
+}
+
+[[noreturn]] void fail(const fs::path& target, const std::string& what, int error) {
+  throw Error(target.string() + ": cannot write (" + what + ": " + std::strerror(error) + ")");
+}
+
+// A hidden name beside the target that nobody can predict: 64 random bits.
+fs::path random_name_beside(const fs::path& target) {
+  std::uint64_t bits = 0;
+  if (::getrandom(&bits, sizeof bits, 0) != sizeof bits) fail(target, "getrandom", errno);
+  char suffix[24];
+  std::snprintf(suffix, sizeof suffix, "%016llx", static_cast<unsigned long long>(bits));
+  std::string name(1, '.');
+  name.append(target.filename().string()).append(".lccp-").append(suffix);
+  return folder_of(target) / name;
+}
+
+int open_named_exclusive(const fs::path& name) {
+  return ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+}
+
+// Gives an O_TMPFILE file a name: /proc/self/fd/N with AT_SYMLINK_FOLLOW is
+// the unprivileged way (linkat(2)). Fails with EEXIST if the name is taken.
+bool link_anonymous(int fd, const fs::path& name) {
+  const std::string self = "/proc/self/fd/" + std::to_string(fd);
+  return ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0;
+}
+
+}  // namespace
+
+PendingFile::PendingFile(fs::path target) : target_(std::move(target)) {
+  const fs::path folder = folder_of(target_);
+  fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  if (fd_ >= 0) return;  // mode 0644 less the umask, as for any new file
+  if (errno == ENOENT || errno == ENOTDIR) {
+    throw Error(target_.string() + ": cannot write (folder '" + folder.string() + "' does not exist)");
+  }
+  if (errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL) fail(target_, "open", errno);
+  for (int attempt = 0; attempt < 8 && fd_ < 0; ++attempt) {
+    named_ = random_name_beside(target_);
+    fd_ = open_named_exclusive(named_);
+    if (fd_ < 0 && errno != EEXIST) fail(target_, "open", errno);
+  }
+  if (fd_ < 0) fail(target_, "open", EEXIST);
+}
+
+PendingFile::PendingFile(PendingFile&& other) noexcept
+    : target_(std::move(other.target_)), named_(std::move(other.named_)), fd_(other.fd_), committed_(other.committed_) {
+  other.fd_ = -1;
+  other.named_.clear();
+}
+
+PendingFile::~PendingFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_ && !named_.empty()) ::unlink(named_.c_str());
+}
+
+void PendingFile::write(std::span<const std::uint8_t> bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail(target_, "write", n < 0 ? errno : ENOSPC);
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+void PendingFile::write(std::string_view text) {
+  write(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
+void PendingFile::commit() {
+  if (committed_) return;
+  if (named_.empty()) {
+    // A new name: link it directly. An existing one: link under a random
+    // name, then rename over the target.
+    if (link_anonymous(fd_, target_)) {
+      committed_ = true;
+      return;
+    }
+    if (errno != EEXIST) fail(target_, "link", errno);
+    for (int attempt = 0; attempt < 8 && named_.empty(); ++attempt) {
+      const fs::path name = random_name_beside(target_);
+      if (link_anonymous(fd_, name)) named_ = name;
+      else if (errno != EEXIST) fail(target_, "link", errno);
+    }
+    if (named_.empty()) fail(target_, "link", EEXIST);
+  }
+  if (::rename(named_.c_str(), target_.c_str()) != 0) fail(target_, "rename", errno);
+  committed_ = true;
+}
+
+void write_file_atomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
+  PendingFile file(path);
+  file.write(bytes);
+  file.commit();
+}
+
+void write_file_atomically(const fs::path& path, std::string_view text) {
+  write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
+void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+  std::ostringstream text;
+  write(text);
+  write_file_atomically(path, std::string_view(text.view()));
+}
+
+void write_files_together(std::span<const FileBytes> files) {
+  std::vector<PendingFile> pending;
+  pending.reserve(files.size());
+  for (const FileBytes& file : files) {
+    pending.emplace_back(file.path);
+    pending.back().write(file.bytes);
+  }
+  for (PendingFile& file : pending) file.commit();
+}
+
+}  // namespace lccp
