@@ -10,8 +10,10 @@
 #include "commands.hpp"
 #include "lccp/error.hpp"
 #include "lccp/process.hpp"
+#include "stop_signal.hpp"
 
 int main(int argc, char** argv) {
+  lccp::app::install_stop_handlers();  // before any work: Ctrl-C from the first millisecond is a clean stop
   CLI::App cli{"LCCP Stream: object and part segmentation of depth data (Locally Convex Connected Patches)"};
   cli.require_subcommand(1);
   unsigned threads = 0;

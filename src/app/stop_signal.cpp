@@ -9,25 +9,20 @@ namespace {
 std::atomic<bool> stop_requested{false};
 static_assert(std::atomic<bool>::is_always_lock_free);
 
-extern "C" void request_stop(int) { stop_requested.store(true); }
-
-struct sigaction previous_interrupt {};
-struct sigaction previous_terminate {};
+extern "C" void request_stop(int signal_number) {
+  if (!stop_requested.exchange(true)) return;
+  std::signal(signal_number, SIG_DFL);  // both async-signal-safe (signal-safety(7))
+  std::raise(signal_number);
+}
 
 }  // namespace
 
-StopOnSignal::StopOnSignal() {
-  stop_requested.store(false);
+void install_stop_handlers() {
   struct sigaction action {};
   action.sa_handler = request_stop;
   sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, &previous_interrupt);
-  sigaction(SIGTERM, &action, &previous_terminate);
-}
-
-StopOnSignal::~StopOnSignal() {
-  sigaction(SIGINT, &previous_interrupt, nullptr);
-  sigaction(SIGTERM, &previous_terminate, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 
 const std::atomic<bool>& StopOnSignal::flag() const { return stop_requested; }

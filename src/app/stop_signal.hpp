@@ -4,16 +4,15 @@
 
 namespace lccp::app {
 
-// While alive, SIGINT and SIGTERM set a flag instead of killing the process
-// (the handler only stores an atomic, which is async-signal-safe); the previous
-// handlers come back on destruction. One instance at a time.
+// Installs the handlers for the whole process; main calls it before any other
+// work, so a signal from the first millisecond on is a stop request. The first
+// signal only stores an atomic (async-signal-safe); a second one restores the
+// default action and re-raises it, so a second Ctrl-C ends a stuck run at once.
+void install_stop_handlers();
+
+// The stop request set by those handlers, for the commands that watch it.
 class StopOnSignal {
  public:
-  StopOnSignal();
-  ~StopOnSignal();
-  StopOnSignal(const StopOnSignal&) = delete;
-  StopOnSignal& operator=(const StopOnSignal&) = delete;
-
   const std::atomic<bool>& flag() const;
   bool requested() const { return flag().load(); }
 };

@@ -10,6 +10,7 @@
 #include "lccp/error.hpp"
 #include "lccp/io/cloud_io.hpp"
 #include "lccp/synthetic/tabletop_scene.hpp"
+#include "stop_signal.hpp"
 
 namespace lccp::app {
 namespace {
@@ -25,7 +26,8 @@ int run_truth(const TruthOptions& options) {
   const synthetic::TabletopScene scene(synthetic::Camera{}, options.seed);
   std::filesystem::create_directories(options.directory);
   std::uint64_t frames = 0;
-  while (std::optional<Frame> frame = source->next()) {
+  const StopOnSignal stop;
+  while (std::optional<Frame> frame = stop.requested() ? std::nullopt : source->next()) {
     // The recorder starts its clock at the first frame, which `lccp record`
     // takes at the stream's start: the timestamp names the synthetic frame.
     const synthetic::SyntheticFrame truth = scene.render(synthetic::frame_of_timestamp_us(frame->timestamp_us));
@@ -45,7 +47,7 @@ int run_truth(const TruthOptions& options) {
   }
   std::printf("wrote the ground truth of %llu frames to %s\n", static_cast<unsigned long long>(frames),
               options.directory.c_str());
-  return 0;
+  return stop.requested() ? 130 : 0;
 }
 
 }  // namespace

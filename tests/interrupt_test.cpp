@@ -1,0 +1,169 @@
+// The binary killed or interrupted at random moments: `kill -9` leaves no
+// partial or stray file and no frame with some of its outputs missing;
+// SIGINT from the first millisecond on ends with a valid summary.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lccp/io/cloud_io.hpp"
+#include "test_files.hpp"
+
+extern char** environ;
+
+namespace lccp {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const fs::path kData = LCCP_TEST_DATA_DIR;
+const fs::path kRecording = fs::path(LCCP_TEST_DATA_DIR) / ".." / ".." / "recordings" / "mosd_scenes.oni";
+
+// The binary started directly (no timeout wrapper, so signals reach it), its
+// output discarded.
+pid_t start_lccp(const std::vector<std::string>& args) {
+  std::vector<std::string> text{LCCP_BINARY};
+  text.insert(text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : text) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, text[0].c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  EXPECT_EQ(error, 0) << "cannot start " << text[0];
+  return pid;
+}
+
+// Waits for the process; returns its exit code, or 1000 + signal if a signal killed it.
+int wait_for(pid_t pid) {
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+}
+
+// Runs to the end once; returns the wall time, so kills can fall anywhere in a run.
+std::chrono::microseconds full_run(const std::vector<std::string>& args) {
+  const auto start = Clock::now();
+  EXPECT_EQ(wait_for(start_lccp(args)), 0);
+  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start);
+}
+
+int run_and_signal(const std::vector<std::string>& args, std::chrono::microseconds after, int signal_number) {
+  const pid_t pid = start_lccp(args);
+  std::this_thread::sleep_for(after);
+  kill(pid, signal_number);
+  return wait_for(pid);
+}
+
+bool is_complete_png(const fs::path& path) {
+  const std::string bytes = test::read_bytes(path);
+  return bytes.size() > 20 && bytes.compare(1, 3, "PNG") == 0 && bytes.compare(bytes.size() - 8, 4, "IEND") == 0;
+}
+
+bool is_complete_labelled_pcd(const fs::path& path) {
+  try {
+    return read_cloud(path).labels.has_value();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// Output stems and their extensions; fails on any file that is not a frame output or the summary.
+std::map<std::string, std::set<std::string>> frame_outputs(const fs::path& dir) {
+  std::map<std::string, std::set<std::string>> stems;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const fs::path name = entry.path().filename();
+    if (name == "summary.json") continue;
+    const std::string ext = name.extension().string();
+    EXPECT_TRUE(ext == ".pcd" || ext == ".png") << "stray file " << name;
+    stems[name.stem().string()].insert(ext);
+  }
+  return stems;
+}
+
+void expect_whole_frames(const fs::path& dir) {
+  for (const auto& [stem, extensions] : frame_outputs(dir)) {
+    EXPECT_EQ(extensions, (std::set<std::string>{".pcd", ".png"})) << "frame " << stem << " is incomplete";
+    EXPECT_TRUE(is_complete_labelled_pcd(dir / (stem + ".pcd"))) << stem;
+    EXPECT_TRUE(is_complete_png(dir / (stem + ".png"))) << stem;
+  }
+}
+
+void expect_valid_summary(const fs::path& path) {
+  ASSERT_TRUE(fs::exists(path)) << "no summary";
+  const std::string text = test::read_bytes(path);
+  EXPECT_NE(text.find("\"frames_completed\""), std::string::npos) << text;
+  EXPECT_EQ(text.substr(text.size() - 2), "}\n") << text;
+}
+
+TEST(Interrupt, SegmentKilledAtFiftyRandomMomentsLeavesBothOutputsOrNone) {
+  const fs::path dir = test::scratch_dir("kill_segment");
+  const std::vector<std::string> args{(kData / "mosd_test34.pcd").string(), "-o", (dir / "out.pcd").string(),
+                                      "--png", (dir / "out.png").string()};
+  const auto run_time = full_run(args);
+  std::mt19937 random(9);
+  int complete = 0;
+  for (int run = 0; run < 50; ++run) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::chrono::microseconds after(std::uniform_int_distribution<long>(0, run_time.count() * 6 / 5)(random));
+    run_and_signal(args, after, SIGKILL);
+    const auto outputs = frame_outputs(dir);
+    SCOPED_TRACE("killed after " + std::to_string(after.count()) + " us");
+    if (outputs.empty()) continue;
+    expect_whole_frames(dir);
+    ++complete;
+  }
+  RecordProperty("runs_with_outputs", complete);
+}
+
+TEST(Interrupt, ReplayKilledAtFiftyRandomMomentsLeavesOnlyWholeFrames) {
+  const fs::path dir = test::scratch_dir("kill_replay");
+  const std::vector<std::string> args{"replay", kRecording.string(), "--frames", "4", "--save", "pcd,png",
+                                      "-o", dir.string(), "--quiet"};
+  const auto run_time = full_run(args);
+  std::mt19937 random(11);
+  for (int run = 0; run < 50; ++run) {
+    fs::remove_all(dir);
+    const std::chrono::microseconds after(std::uniform_int_distribution<long>(0, run_time.count() * 6 / 5)(random));
+    run_and_signal(args, after, SIGKILL);
+    SCOPED_TRACE("killed after " + std::to_string(after.count()) + " us");
+    if (!fs::exists(dir)) continue;
+    expect_whole_frames(dir);
+    if (fs::exists(dir / "summary.json")) expect_valid_summary(dir / "summary.json");
+  }
+}
+
+TEST(Interrupt, ReplayInterruptedFromTheFirstMillisecondEndsWithAValidSummary) {
+  const fs::path dir = test::scratch_dir("sigint_replay");
+  const std::vector<std::string> args{"replay", kRecording.string(), "--save", "pcd,png", "-o", dir.string(), "--quiet"};
+  for (const int ms : {1, 2, 3, 5, 10, 20, 50, 100, 200, 500, 1000}) {
+    SCOPED_TRACE("SIGINT after " + std::to_string(ms) + " ms");
+    fs::remove_all(dir);
+    const int code = run_and_signal(args, std::chrono::milliseconds(ms), SIGINT);
+    EXPECT_TRUE(code == 130 || code == 0) << "exit " << code << " (1000 + n: killed by signal n)";
+    expect_valid_summary(dir / "summary.json");
+    expect_whole_frames(dir);
+  }
+}
+
+}  // namespace
+}  // namespace lccp
