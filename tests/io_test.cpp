@@ -871,6 +871,15 @@ TEST(IoPcd, LimitsAndNonRegularFiles) {
   expect_read_error(dir / "null.ply", "not a regular file");
 }
 
+TEST(IoPcd, LongHeaderLinesAreRefusedNotStored) {
+  std::string fields = "FIELDS x y z";
+  for (int k = 0; k < 70000; ++k) fields += " f";
+  expect_pcd_error(std::string(kAsciiHeader) + fields + "\nPOINTS 1\nDATA ascii\n1 2 3\n",
+                   {"bad PCD header (more than 65536 words in FIELDS)"});
+  const std::string comment = "# " + std::string(1 << 20, 'c') + "\n";  // comments are skipped, however long
+  EXPECT_EQ(parse_pcd_text(comment + pcd_header(kXyz, 1, 1, "ascii") + "1 2 3\n").cloud.size(), 1u);
+}
+
 // ------------------------------------------------------------------- PLY
 
 struct PlyVertex {
@@ -1018,6 +1027,17 @@ TEST(IoPly, HugeOrNegativeCountsFailFast) {
   expect_ply_error("ply\nformat binary_big_endian 1.0\nelement face 1\nproperty list uint uchar v\n" + vertex +
                    "end_header\n\xff\xff\xff\xff" + std::string(12, '\0'), "truncated PLY data");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
+}
+
+TEST(IoPly, HeaderSizeIsBounded) {
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  std::string many = "ply\nformat ascii 1.0\nelement vertex 1\n" + xyz;
+  for (int k = 0; k < 5000; ++k) many += "property uchar p\n";
+  expect_ply_error(many + "end_header\n", "too many properties");
+  const std::string comment = "comment" + std::string(1 << 20, ' ') + "\n";
+  EXPECT_EQ(parse_ply_text("ply\nformat ascii 1.0\n" + comment + "element vertex 1\n" + xyz + "end_header\n1 2 3\n")
+                .cloud.size(), 1u);
+  expect_ply_error("ply\nformat ascii 1.0\nelement vertex 1 2 3 4 5 6 7 8\n" + xyz + "end_header\n", "bad element line");
 }
 
 // ---------------------------------------------------------------- config

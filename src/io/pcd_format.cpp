@@ -54,14 +54,19 @@ class Words {
   std::size_t pos_ = 0;
 };
 
-std::vector<std::string_view> rest_of(Words& words) {
-  std::vector<std::string_view> out;
-  for (std::string_view word = words.next(); !word.empty(); word = words.next()) out.push_back(word);
-  return out;
-}
-
 [[noreturn]] void bad_header(std::string_view name, const std::string& problem) {
   fail(name, "bad PCD header (" + problem + ")");
+}
+
+// The remaining words of a header line, at most kMaxFields of them (a long
+// line must not become a huge vector).
+std::vector<std::string_view> rest_of(std::string_view name, std::string_view key, Words& words) {
+  std::vector<std::string_view> out;
+  for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
+    if (out.size() == kMaxFields) bad_header(name, "more than " + std::to_string(kMaxFields) + " words in " + std::string(key));
+    out.push_back(word);
+  }
+  return out;
 }
 
 // A whole number >= 0 (WIDTH, HEIGHT, POINTS, SIZE, COUNT); "-1", "nan" or "1e3" are not.
@@ -98,16 +103,16 @@ bool apply_header_line(std::string_view name, std::string_view key, Words& words
     return value;
   };
   if (key == "VERSION") return true;  // 0.5 .. 0.7 share the keywords read here
-  if (key == "FIELDS" || key == "COLUMNS") set_once(name, "FIELDS", header.fields, rest_of(words));
-  else if (key == "SIZE") set_once(name, key, header.sizes, rest_of(words));
-  else if (key == "TYPE") set_once(name, key, header.types, rest_of(words));
-  else if (key == "COUNT") set_once(name, key, header.counts, rest_of(words));
+  if (key == "FIELDS" || key == "COLUMNS") set_once(name, "FIELDS", header.fields, rest_of(name, key, words));
+  else if (key == "SIZE") set_once(name, key, header.sizes, rest_of(name, key, words));
+  else if (key == "TYPE") set_once(name, key, header.types, rest_of(name, key, words));
+  else if (key == "COUNT") set_once(name, key, header.counts, rest_of(name, key, words));
   else if (key == "WIDTH") set_once(name, key, header.width, single());
   else if (key == "HEIGHT") set_once(name, key, header.height, single());
   else if (key == "POINTS") set_once(name, key, header.points, single());
   else if (key == "VIEWPOINT") {
     if (header.viewpoint) bad_header(name, "VIEWPOINT given twice");
-    check_viewpoint(name, rest_of(words));
+    check_viewpoint(name, rest_of(name, key, words));
     header.viewpoint = true;
   } else {
     return false;
@@ -157,7 +162,6 @@ Scalar parse_type(std::string_view name, std::string_view field, std::string_vie
 std::uint64_t interleaved_fields(std::string_view name, const PcdHeader& header, std::vector<RecordField>& out) {
   if (!header.fields || header.fields->empty()) bad_header(name, "no FIELDS");
   const std::vector<std::string_view>& names = *header.fields;
-  if (names.size() > kMaxFields) bad_header(name, "too many FIELDS");
   for (const auto* list : {&header.sizes, &header.types, &header.counts})
     if (*list && (*list)->size() != names.size()) bad_header(name, "SIZE, TYPE or COUNT does not match FIELDS");
   std::uint64_t step = 0;

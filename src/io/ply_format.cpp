@@ -27,6 +27,10 @@ using namespace io_detail;
 
 enum class Format { ascii, little_endian, big_endian };
 
+// Elements, and properties over all elements, in a header: far more than any
+// real file has, few enough that the header's description stays small.
+constexpr std::size_t kMaxDeclarations = 4096;
+
 struct Property {
   std::string_view name;
   Scalar type;                        // the item type, for a list
@@ -42,6 +46,7 @@ struct Element {
 struct PlyHeader {
   Format format = Format::ascii;
   std::vector<Element> elements;
+  std::size_t properties = 0;   // over all elements
   std::size_t data_offset = 0;  // first byte after the end_header line
 };
 
@@ -61,14 +66,17 @@ std::optional<Scalar> scalar_type(std::string_view word) {
   return std::nullopt;
 }
 
+// The words of a header line; no keyword takes more than 5, so splitting
+// stops at 6 (a long comment line must not become a huge vector).
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> words;
-  for (std::size_t pos = 0;;) {
+  for (std::size_t pos = 0; words.size() < 6;) {
     const std::size_t start = line.find_first_not_of(" \t\r", pos);
-    if (start == std::string_view::npos) return words;
+    if (start == std::string_view::npos) break;
     pos = std::min(line.find_first_of(" \t\r", start), line.size());
     words.push_back(line.substr(start, pos - start));
   }
+  return words;
 }
 
 Scalar need_type(std::string_view name, std::string_view word) {
@@ -114,11 +122,13 @@ bool apply_header_line(std::string_view name, const std::vector<std::string_view
     has_format = true;
   } else if (key == "element") {
     if (words.size() != 3) not_ply(name, "bad element line");
+    if (header.elements.size() == kMaxDeclarations) not_ply(name, "too many elements");
     header.elements.push_back({words[1], parse_element_count(name, words[2]), {}});
   } else if (key == "property") {
     if (header.elements.empty()) not_ply(name, "property before any element");
+    if (++header.properties > kMaxDeclarations) not_ply(name, "too many properties");
     header.elements.back().properties.push_back(parse_property(name, words));
-  } else if (key == "end_header") {
+  } else if (key == "end_header" && words.size() == 1) {
     if (!has_format) not_ply(name, "no format line");
     return true;
   } else {

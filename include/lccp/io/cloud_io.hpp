@@ -22,9 +22,10 @@ struct LabelledCloud {
 // Upper bounds a file must respect to be read at all; larger files are
 // rejected with lccp::Error before their data is decoded.
 struct ReadLimits {
-  // Points in one cloud (PCD POINTS, PLY vertex count). The default, 50
-  // million, is 160 Kinect frames of 640x480; decoding that many takes about
-  // 1.4 GB for points, colours and labels.
+  // Points in one cloud (PCD POINTS, PLY vertex count), checked before any
+  // point is decoded. The default, 50 million, is 160 Kinect frames of
+  // 640x480; the decoded cloud then takes 1 to 1.6 GB (20 to 32 bytes a
+  // point: position, colour, label, normal).
   std::uint64_t max_points = 50'000'000;
   // Bytes of one file, checked by read_cloud before it reads the file.
   std::uint64_t max_file_bytes = std::uint64_t{4} << 30;  // 4 GiB
