@@ -63,7 +63,8 @@ class Words {
 std::vector<std::string_view> rest_of(std::string_view name, std::string_view key, Words& words) {
   std::vector<std::string_view> out;
   for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
-    if (out.size() == kMaxFields) bad_header(name, "more than " + std::to_string(kMaxFields) + " words in " + std::string(key));
+    if (out.size() == kMaxFields)
+      bad_header(name, "more than " + std::to_string(kMaxFields) + " words in " + std::string(key));
     out.push_back(word);
   }
   return out;
@@ -169,7 +170,8 @@ std::uint64_t interleaved_fields(std::string_view name, const PcdHeader& header,
     const std::uint64_t size = header.sizes ? parse_count(name, "SIZE", (*header.sizes)[i]) : 4;
     const std::uint64_t count = header.counts ? parse_count(name, "COUNT", (*header.counts)[i]) : 1;
     const Scalar type = parse_type(name, names[i], header.types ? (*header.types)[i] : "F", size);
-    if (count == 0 || count > kMaxPointBytes) bad_header(name, "COUNT " + std::to_string(count) + " of field '" + one_line(names[i]) + "'");
+    if (count == 0 || count > kMaxPointBytes)
+      bad_header(name, "COUNT " + std::to_string(count) + " of field '" + one_line(names[i]) + "'");
     out.push_back({names[i], type, count, step, 0});
     step += size * count;
     if (step > kMaxPointBytes) bad_header(name, "points of more than " + std::to_string(kMaxPointBytes) + " bytes");
@@ -190,7 +192,8 @@ std::uint64_t dimensions(std::string_view name, const PcdHeader& header, const R
   constexpr std::uint64_t kMax = 0xFFFFFFFFu;
   if (points > kMax || width > kMax || height > kMax) bad_header(name, "more than 2^32 - 1 points, rows or columns");
   if (width * height != points)  // no overflow: both < 2^32
-    bad_header(name, "WIDTH x HEIGHT = " + std::to_string(width) + " x " + std::to_string(height) + " != POINTS " + std::to_string(points));
+    bad_header(name, "WIDTH x HEIGHT = " + std::to_string(width) + " x " + std::to_string(height) +
+                         " != POINTS " + std::to_string(points));
   if (points == 0) fail(name, "no points");
   if (points > limits.max_points)
     fail(name, "too many points (" + std::to_string(points) + ", limit " + std::to_string(limits.max_points) + ")");
@@ -242,7 +245,7 @@ void decode_compressed(std::string_view name, std::span<const std::uint8_t> data
 }
 
 // One ASCII point line: every element of every field (`_` padding skipped).
-void decode_ascii_line(std::string_view name, std::string_view line, std::uint64_t index, Records& records,
+void decode_ascii_line(std::string_view name, std::string_view line, std::uint64_t index, const Records& records,
                        std::uint8_t* record) {
   Words words(line);
   const auto malformed = [&] { fail(name, "truncated or malformed data (point " + std::to_string(index + 1) + ")"); };
@@ -252,7 +255,8 @@ void decode_ascii_line(std::string_view name, std::string_view line, std::uint64
       if (word.empty()) malformed();
       if (field.name == "_") continue;
       if (!store_text_value(word, field.type, record + field.offset + c * field.type.size))
-        fail(name, "bad value '" + one_line(word) + "' for field '" + one_line(field.name) + "' (point " + std::to_string(index + 1) + ")");
+        fail(name, "bad value '" + one_line(word) + "' for field '" + one_line(field.name) + "' (point " +
+                       std::to_string(index + 1) + ")");
     }
   }
   if (!words.next().empty()) malformed();
@@ -264,7 +268,8 @@ void decode_ascii(std::string_view name, std::string_view text, std::uint64_t po
   std::uint64_t words = 0;
   for (const RecordField& field : records.fields) words += field.count;
   if (points * words * 2 > text.size() + 1)  // a value is >= 1 character and a separator
-    fail(name, "truncated data (" + std::to_string(text.size()) + " bytes cannot hold " + std::to_string(points) + " points)");
+    fail(name, "truncated data (" + std::to_string(text.size()) + " bytes cannot hold " + std::to_string(points) +
+                   " points)");
   records.storage.assign(points * step, 0);
   std::uint64_t read = 0;
   for (std::size_t pos = 0; read < points && pos < text.size();) {

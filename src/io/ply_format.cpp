@@ -3,8 +3,9 @@
 // / `obj_info`, `element NAME COUNT`, `property TYPE NAME`, `property list
 // COUNT_TYPE ITEM_TYPE NAME`, `end_header`), then the elements in header
 // order, each element's properties in order; ascii as whitespace-separated
-// numbers, binary as packed values in the stated byte order. Only `vertex` is
-// read; elements before it (with lists, such as faces) are skipped.
+// numbers, binary as packed values in the stated byte order. The `vertex`
+// element is read, every other one (faces, with lists) is parsed and skipped,
+// except that a `camera` element's viewport gives an organized cloud's shape.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -107,7 +108,8 @@ Format parse_format(std::string_view name, const std::vector<std::string_view>& 
 std::uint64_t parse_element_count(std::string_view name, std::string_view word) {
   std::uint64_t value = 0;
   const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (ec != std::errc() || end != word.data() + word.size()) not_ply(name, "bad element count '" + one_line(word) + "'");
+  if (ec != std::errc() || end != word.data() + word.size())
+    not_ply(name, "bad element count '" + one_line(word) + "'");
   return value;
 }
 
@@ -166,13 +168,20 @@ T load(const std::uint8_t* bytes) {
 
 // An integer value in host order as a whole number, or nothing if negative.
 std::optional<std::uint64_t> whole_number(const std::uint8_t* bytes, Scalar type) {
-  std::int64_t value = 0;
   if (type.kind == Kind::unsigned_int) {
-    if (type.size == 8) return load<std::uint64_t>(bytes);
-    value = type.size == 1 ? load<std::uint8_t>(bytes) : type.size == 2 ? load<std::uint16_t>(bytes) : load<std::uint32_t>(bytes);
-  } else {
-    value = type.size == 1 ? load<std::int8_t>(bytes) : type.size == 2 ? load<std::int16_t>(bytes)
-          : type.size == 4 ? load<std::int32_t>(bytes) : load<std::int64_t>(bytes);
+    switch (type.size) {
+      case 1: return load<std::uint8_t>(bytes);
+      case 2: return load<std::uint16_t>(bytes);
+      case 4: return load<std::uint32_t>(bytes);
+      default: return load<std::uint64_t>(bytes);
+    }
+  }
+  std::int64_t value = 0;
+  switch (type.size) {
+    case 1: value = load<std::int8_t>(bytes); break;
+    case 2: value = load<std::int16_t>(bytes); break;
+    case 4: value = load<std::int32_t>(bytes); break;
+    default: value = load<std::int64_t>(bytes); break;
   }
   if (value < 0) return std::nullopt;
   return static_cast<std::uint64_t>(value);
@@ -238,7 +247,6 @@ class Reader {
   Format format_;
   std::size_t pos_ = 0;
 };
-
 
 // The least bytes one element takes: its binary values (a list at least its
 // length), or in ascii one character and a separator per value.
@@ -336,7 +344,8 @@ LabelledCloud parse_ply(std::span<const std::uint8_t> bytes, std::string_view na
   const CloudLayout layout = find_cloud_fields(name, records.fields, true);
   if (vertex->count == 0) fail(name, "no points");
   if (vertex->count > std::min<std::uint64_t>(limits.max_points, 0xFFFFFFFFu))
-    fail(name, "too many points (" + std::to_string(vertex->count) + ", limit " + std::to_string(limits.max_points) + ")");
+    fail(name, "too many points (" + std::to_string(vertex->count) + ", limit " + std::to_string(limits.max_points) +
+                   ")");
   records.width = static_cast<std::uint32_t>(vertex->count);
   Reader reader(name, bytes.subspan(header.data_offset), header.format);
   std::optional<std::array<std::uint64_t, 2>> viewport;
