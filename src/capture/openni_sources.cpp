@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "depth_stream.hpp"
+#include "oni_check.hpp"
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/error.hpp"
 
@@ -32,6 +33,9 @@ class RecordingSource final : public FrameSource {
   RecordingSource(const std::filesystem::path& path, const ReplayOptions& options)
       : path_(path), options_(options) {
     check_recording_path(path);
+    // OpenNI2's file driver trusts the file's sizes and indices: ours are checked
+    // first, every record and every frame (oni_check.cpp says why this, not a child process).
+    const detail::OniRecordingFacts facts = detail::check_oni_file(path);
     initialize_openni();
     try {
       stream_.open_device(path.string(), "");
@@ -44,6 +48,10 @@ class RecordingSource final : public FrameSource {
     playback->setSpeed(-1.0f);  // manual: each frame released on request, none dropped (GUIDE 4)
     stream_.open_depth_stream();
     total_ = static_cast<std::uint64_t>(std::max(0, playback->getNumberOfFrames(stream_.stream())));
+    if (total_ != facts.frames) {
+      throw Error(path.string() + ": OpenNI2 counts " + std::to_string(total_) + " depth frames where the file holds " +
+                  std::to_string(facts.frames));
+    }
     if (options_.max_frames) total_ = std::min(total_, *options_.max_frames);
     stream_.start();
   }

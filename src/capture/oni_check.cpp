@@ -1,0 +1,640 @@
+// Structural check of .oni recordings before OpenNI2 opens them (oni_check.hpp).
+//
+// Why check instead of isolating OpenNI2 in a child process: OpenNI2's player
+// (Source/Drivers/OniFile/PlayerNode.cpp) reads a record's fields into a fixed
+// buffer without comparing the fields size to it (ReadRecordFields), allocates
+// "max node id + 1" entries from the header (OpenStream), dereferences property
+// data without size checks (IntPropRecord::GetValue, the xnFOV property), decodes
+// 16zT data with table indices and an end test it never bounds
+// (XnStreamUncompressDepth16ZWithEmbTable loops "while (pInput != pInputEnd)"),
+// and decodes with a null codec for a stream declared without one. Every one of
+// those is a fact about the bytes, so checking the bytes first makes the crash
+// impossible rather than contained, costs one linear pass (about a millisecond a
+// frame), keeps replay in one process, and is testable and fuzzable on its own.
+// The facts below come from OpenNI2's public source: DataRecords.h/.cpp,
+// PlayerNode.cpp, PlayerDevice.cpp, PlayerSource.cpp, PlayerStream.cpp,
+// Formats/XnCodecIDs.h and XnStreamCompression.cpp in Source/Drivers/OniFile/,
+// and Source/Core/OniRecorder.cpp, OniDataRecords.cpp (what the Recorder writes).
+#include "oni_check.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <vector>
+
+#include "lccp/error.hpp"
+
+namespace lccp::detail {
+namespace {
+
+constexpr std::size_t kFileHeaderBytes = 24;    // RecordingHeader (DataRecords.h)
+constexpr std::size_t kRecordHeaderBytes = 28;  // Record::Header, 64-bit undo position (format 1.0.1.0)
+constexpr std::uint32_t kRecordMagic = 0x0052494E;  // "NIR\0" (Record::MAGIC)
+constexpr std::size_t kSeekEntryBytes = 20;     // DataIndexEntry: u64 timestamp, u32 configuration, u64 position
+// The player's record buffer: NewDataRecordHeader::MAX_SIZE (28 + 81 + 8 + 4) + DATA_MAX_SIZE.
+constexpr std::uint64_t kPlayerRecordMaxBytes = 121 + kOniPlayerDataMaxBytes;
+// Our own limits, far above what OpenNI2's Recorder writes (one node, id 1; fields of
+// a few hundred bytes; names under 40 characters).
+constexpr std::uint32_t kMaxNodeId = 255;
+constexpr std::uint32_t kMaxFieldsBytes = 64 * 1024;
+constexpr std::uint32_t kMaxNodeNameBytes = 80;       // XN_MAX_NAME_LENGTH: the player copies into char[80]
+constexpr std::uint32_t kMaxPropertyNameBytes = 256;  // ONI_MAX_STR, the Recorder's limit
+
+enum RecordType : std::uint32_t {  // DataRecords.h
+  kNodeAddedV1004 = 0x02,
+  kIntProperty = 0x03,
+  kRealProperty = 0x04,
+  kStringProperty = 0x05,
+  kGeneralProperty = 0x06,
+  kNodeRemoved = 0x07,
+  kNodeDataBegin = 0x08,
+  kNodeStateReady = 0x09,
+  kNewData = 0x0A,
+  kEnd = 0x0B,
+  kNodeAddedV1005 = 0x0C,
+  kNodeAdded = 0x0D,
+  kSeekTable = 0x0E,
+};
+
+constexpr std::uint32_t codec_id(char c1, char c2, char c3, char c4) {  // XN_CODEC_ID, XnCodecIDs.h
+  return std::uint32_t(std::uint8_t(c4)) << 24 | std::uint32_t(std::uint8_t(c3)) << 16 |
+         std::uint32_t(std::uint8_t(c2)) << 8 | std::uint8_t(c1);
+}
+constexpr std::uint32_t kCodec16zT = codec_id('1', '6', 'z', 'T');
+constexpr std::uint32_t kCodecNone = codec_id('N', 'O', 'N', 'E');
+constexpr std::uint32_t kNodeTypeDepth = 2;  // XN_NODE_TYPE_DEPTH
+constexpr int kDepth1mm = 100;               // ONI_PIXEL_FORMAT_DEPTH_1_MM
+constexpr int kDepth100um = 101;             // ONI_PIXEL_FORMAT_DEPTH_100_UM
+
+// An inconsistency; turned into one lccp::Error line naming the file.
+struct Corrupt {
+  std::string text;
+};
+[[noreturn]] void corrupt(std::string text) { throw Corrupt{std::move(text)}; }
+
+std::string str(std::uint64_t value) { return std::to_string(value); }
+
+// Little-endian reads inside one span; reading past its end is an inconsistency.
+class Cursor {
+ public:
+  explicit Cursor(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  std::span<const std::uint8_t> take(std::uint64_t count) {
+    if (count > bytes_.size() - at_) corrupt("its fields end early");
+    const auto part = bytes_.subspan(at_, count);
+    at_ += count;
+    return part;
+  }
+  std::uint32_t u32() { return static_cast<std::uint32_t>(uint(4)); }
+  std::uint64_t u64() { return uint(8); }
+  double f64() {
+    const std::uint64_t bits = u64();
+    double value = 0;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+  }
+  bool done() const { return at_ == bytes_.size(); }
+
+ private:
+  std::uint64_t uint(int size) {
+    const auto part = take(size);
+    std::uint64_t value = 0;
+    for (int i = size - 1; i >= 0; --i) value = value << 8 | part[i];
+    return value;
+  }
+  std::span<const std::uint8_t> bytes_;
+  std::size_t at_ = 0;
+};
+
+// A string field: u32 size (terminating NUL included), then the bytes
+// (Record::ReadString). Must hold exactly one NUL, at its end.
+std::string read_string(Cursor& fields, std::uint32_t max_bytes, const char* what) {
+  const std::uint32_t size = fields.u32();
+  if (size == 0 || size > max_bytes) corrupt(std::string(what) + " of " + str(size) + " bytes");
+  const auto bytes = fields.take(size);
+  const auto nul = std::find(bytes.begin(), bytes.end(), std::uint8_t{0});
+  if (nul != bytes.end() - 1) corrupt(std::string(what) + " is not one NUL-terminated string");
+  std::string text(bytes.begin(), nul);
+  for (char& c : text) {
+    if (c < 0x20 || c > 0x7e) c = '?';  // it may appear in a one-line message
+  }
+  return text;
+}
+
+struct RecordHeader {
+  std::uint64_t offset = 0;
+  std::uint32_t type = 0;
+  std::uint32_t node = 0;
+  std::uint32_t fields_size = 0;
+  std::uint32_t payload_size = 0;
+  std::uint64_t undo = 0;
+  std::span<const std::uint8_t> fields;   // after the 28-byte header
+  std::span<const std::uint8_t> payload;
+};
+
+// The depth stream's declared state, in file order (PlayerDevice::OnNode*PropChanged).
+struct DepthNode {
+  std::uint32_t id = 0;
+  std::uint64_t added_at = 0;
+  std::uint32_t codec = 0;
+  std::uint32_t declared_frames = 0;
+  std::uint64_t max_timestamp = 0;
+  std::uint64_t seek_table_position = 0;
+  bool ready = false;
+  bool data_begun = false;
+  bool removed = false;
+  std::uint32_t width = 0, height = 0;
+  int pixel_format = kDepth1mm;  // the player's default for a depth source
+  std::optional<std::uint64_t> required_frame_size;
+  bool has_max_depth = false;
+  std::vector<std::uint64_t> frame_offsets;
+  std::vector<std::uint64_t> frame_timestamps;
+  std::optional<RecordHeader> seek_table;
+};
+
+// The 16zT stream after its table (XnStreamUncompressDepth16ZWithEmbTable): each
+// output pixel is table[index]; bytes below 0xE0 carry two 4-bit steps (index -=
+// nibble - 6; a low nibble 0xD ends the byte, 0xF means a long step follows); 0xFF
+// means a long step follows; 0xE0 + n repeats the last pixel 2n times. A long step
+// is one byte b >= 0x80 (index -= b - 192) or two bytes (index = b << 8 | next).
+class Decoder16zT {
+ public:
+  Decoder16zT(std::span<const std::uint8_t> in, std::span<std::uint16_t> out) : in_(in), out_(out) {}
+
+  std::optional<std::string> run() {
+    if (in_.size() < 2) return "16zT data shorter than its table size";
+    const std::size_t table_size = std::size_t(in_[0]) | std::size_t(in_[1]) << 8;
+    if (in_.size() < 2 + 2 * table_size + 2) return "16zT table of " + str(table_size) + " entries runs past the data";
+    table_ = in_.subspan(2, 2 * table_size);
+    at_ = 2 + 2 * table_size;
+    index_ = read16();
+    if (!emit(1)) return problem_;
+    while (at_ < in_.size()) {
+      if (!step()) return problem_;
+    }
+    if (written_ != out_.size()) return "16zT data decodes to " + str(written_) + " of " + str(out_.size()) + " pixels";
+    return std::nullopt;
+  }
+
+ private:
+  std::uint16_t read16() {
+    const std::uint16_t value = static_cast<std::uint16_t>(in_[at_] | in_[at_ + 1] << 8);
+    at_ += 2;
+    return value;
+  }
+  bool fail(std::string text) {
+    problem_ = std::move(text);
+    return false;
+  }
+  bool emit(std::size_t count) {
+    if (2 * std::size_t{index_} >= table_.size()) return fail("16zT index " + str(index_) + " past its table");
+    if (count > out_.size() - written_) return fail("16zT data decodes to more than " + str(out_.size()) + " pixels");
+    const auto value = static_cast<std::uint16_t>(table_[2 * index_] | table_[2 * index_ + 1] << 8);
+    std::fill_n(out_.begin() + static_cast<std::ptrdiff_t>(written_), count, value);
+    written_ += count;
+    return true;
+  }
+  void add(int delta) { index_ = static_cast<std::uint16_t>(index_ - delta); }  // u16 arithmetic, as the player's
+
+  bool long_step() {
+    if (at_ >= in_.size()) return fail("16zT data ends inside a step");
+    const std::uint8_t b = in_[at_++];
+    if (b & 0x80) {
+      add(int(b) - 192);
+    } else {
+      if (at_ >= in_.size()) return fail("16zT data ends inside a step");
+      index_ = static_cast<std::uint16_t>(b << 8 | in_[at_++]);
+    }
+    return emit(1);
+  }
+
+  bool step() {
+    const std::uint8_t c = in_[at_++];
+    if (c == 0xFF) return long_step();
+    if (c >= 0xE0) return emit(2 * std::size_t(c - 0xE0));
+    add(int(c >> 4) - 6);
+    if (!emit(1)) return false;
+    const int low = c & 0x0F;
+    if (low == 0x0F) return long_step();
+    if (low == 0x0D) return true;
+    add(low - 6);
+    return emit(1);
+  }
+
+  std::span<const std::uint8_t> in_;
+  std::span<std::uint16_t> out_;
+  std::span<const std::uint8_t> table_;
+  std::size_t at_ = 0;
+  std::size_t written_ = 0;
+  std::uint16_t index_ = 0;
+  std::string problem_;
+};
+
+}  // namespace
+
+std::optional<std::string> decode_16zt(std::span<const std::uint8_t> in, std::span<std::uint16_t> out) {
+  return Decoder16zT(in, out).run();
+}
+
+namespace {
+
+// Walks the records in file order, as OpenNI2's player meets them, and checks each.
+class OniChecker {
+ public:
+  explicit OniChecker(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+
+  OniRecordingFacts run() {
+    check_file_header();
+    std::uint64_t at = kFileHeaderBytes;
+    for (bool end = false; !end;) {
+      const RecordHeader record = read_record_header(at);
+      try {
+        end = handle(record);
+      } catch (Corrupt& c) {
+        c.text = "record at byte " + str(record.offset) + ": " + c.text;
+        throw;
+      }
+      record_offsets_.push_back(record.offset);
+      at = record.offset + record.fields_size + record.payload_size;
+    }
+    return finish();
+  }
+
+ private:
+  void check_file_header() {
+    if (bytes_.size() < kFileHeaderBytes) corrupt("shorter than the 24-byte .oni file header");
+    if (std::memcmp(bytes_.data(), "NI10", 4) != 0) corrupt("no .oni file header (magic NI10)");
+    Cursor header(bytes_.subspan(4, kFileHeaderBytes - 4));
+    const auto version = header.take(8);
+    // {1, 0, 1, 0}: the only version OpenNI2's Recorder writes (OniRecorder.cpp), with
+    // 64-bit positions; older ones use another record header (PlayerNode::OpenStream).
+    const std::uint8_t current[8] = {1, 0, 1, 0, 0, 0, 0, 0};
+    if (!std::equal(version.begin(), version.end(), current)) {
+      const std::uint64_t maintenance = version[2] | version[3] << 8;
+      const std::uint64_t build = version[4] | version[5] << 8 | version[6] << 16 | std::uint64_t{version[7]} << 24;
+      corrupt("unsupported .oni format version " + str(version[0]) + "." + str(version[1]) + "." + str(maintenance) +
+              "." + str(build) + " (only 1.0.1.0, written by OpenNI2, is read)");
+    }
+    global_max_timestamp_ = header.u64();
+    max_node_id_ = header.u32();
+    if (max_node_id_ > kMaxNodeId) corrupt("header declares node ids up to " + str(max_node_id_));
+  }
+
+  RecordHeader read_record_header(std::uint64_t at) {
+    const std::string where = "record at byte " + str(at) + ": ";
+    if (at >= bytes_.size()) corrupt("ends at byte " + str(at) + " without an End record (truncated?)");
+    if (bytes_.size() - at < kRecordHeaderBytes) corrupt(where + "truncated record header (truncated file?)");
+    Cursor cursor(bytes_.subspan(at, kRecordHeaderBytes));
+    RecordHeader r;
+    r.offset = at;
+    if (cursor.u32() != kRecordMagic) corrupt(where + "no record magic NIR");
+    r.type = cursor.u32();
+    r.node = cursor.u32();
+    r.fields_size = cursor.u32();
+    r.payload_size = cursor.u32();
+    r.undo = cursor.u64();
+    if (r.fields_size < kRecordHeaderBytes || r.fields_size > kMaxFieldsBytes) {
+      corrupt(where + "fields size " + str(r.fields_size) + " outside 28.." + str(kMaxFieldsBytes));
+    }
+    const std::uint64_t size = std::uint64_t{r.fields_size} + r.payload_size;
+    if (size > bytes_.size() - at) {
+      corrupt(where + "record of " + str(size) + " bytes runs past the end of the file (truncated?)");
+    }
+    if (r.type != kNewData && r.type != kSeekTable && r.payload_size != 0) {
+      corrupt(where + "record type " + str(r.type) + " with a payload");
+    }
+    if (size > kPlayerRecordMaxBytes) corrupt(where + "record of " + str(size) + " bytes exceeds OpenNI2's player buffer");
+    r.fields = bytes_.subspan(at + kRecordHeaderBytes, r.fields_size - kRecordHeaderBytes);
+    r.payload = bytes_.subspan(at + r.fields_size, r.payload_size);
+    return r;
+  }
+
+  // Returns true at the End record.
+  bool handle(const RecordHeader& r) {
+    switch (r.type) {
+      case kNodeAdded: node_added(r); return false;
+      case kIntProperty:
+      case kRealProperty:
+      case kStringProperty:
+      case kGeneralProperty: property(r); return false;
+      case kNodeStateReady: state_ready(r); return false;
+      case kNodeDataBegin: data_begin(r); return false;
+      case kNewData: new_data(r); return false;
+      case kNodeRemoved: node_removed(r); return false;
+      case kSeekTable: seek_table(r); return false;
+      case kEnd: check_no_fields(r); return true;
+      case kNodeAddedV1004:
+      case kNodeAddedV1005: corrupt("legacy NodeAdded record (OpenNI 1 format) not supported");
+      default: corrupt("unknown record type " + str(r.type));
+    }
+  }
+
+  void check_no_fields(const RecordHeader& r) {
+    if (!r.fields.empty()) corrupt("record type " + str(r.type) + " with " + str(r.fields.size()) + " bytes of fields");
+  }
+
+  void check_undo(const RecordHeader& r, std::uint64_t expected) {
+    if (r.undo != expected) corrupt("undo position " + str(r.undo) + ", expected " + str(expected));
+  }
+
+  // Any undo position is 0 or an earlier record (PlayerNode::UndoRecord seeks there).
+  void check_undo_earlier(const RecordHeader& r) {
+    if (r.undo != 0 && !std::binary_search(record_offsets_.begin(), record_offsets_.end(), r.undo)) {
+      corrupt("undo position " + str(r.undo) + " is not an earlier record");
+    }
+  }
+
+  // The depth node a record names; it must have been added and not removed.
+  DepthNode& live_node(const RecordHeader& r) {
+    if (!node_ || node_->id != r.node) corrupt("record for node " + str(r.node) + ", which was never added");
+    if (node_->removed) corrupt("record for node " + str(r.node) + " after it was removed");
+    return *node_;
+  }
+
+  void node_added(const RecordHeader& r) {
+    Cursor fields(r.fields);
+    const std::string name = read_string(fields, kMaxNodeNameBytes, "node name");
+    const std::uint32_t type = fields.u32();
+    DepthNode node;
+    node.id = r.node;
+    node.added_at = r.offset;
+    node.codec = fields.u32();
+    node.declared_frames = fields.u32();
+    const std::uint64_t min_timestamp = fields.u64();
+    node.max_timestamp = fields.u64();
+    node.seek_table_position = fields.u64();
+    if (!fields.done()) corrupt("NodeAdded record with " + str(r.fields.size()) + " bytes of fields");
+    if (type != kNodeTypeDepth) {
+      corrupt("node '" + name + "' is of type " + str(type) + ", not depth: no depth stream (only depth-only recordings are read)");
+    }
+    if (node_) corrupt("a second stream (only recordings of one depth stream are read)");
+    if (r.node == 0 || r.node > max_node_id_) corrupt("node id " + str(r.node) + " outside 1.." + str(max_node_id_));
+    if (node.codec != kCodec16zT && node.codec != kCodecNone) corrupt("depth codec is neither 16zT nor NONE");
+    if (min_timestamp > node.max_timestamp) corrupt("minimum timestamp after the maximum");
+    check_undo(r, 0);
+    node_ = node;
+  }
+
+  void property(const RecordHeader& r) {
+    DepthNode& node = live_node(r);
+    check_undo_earlier(r);
+    Cursor fields(r.fields);
+    const std::string name = read_string(fields, kMaxPropertyNameBytes, "property name");
+    const std::uint32_t size = fields.u32();
+    Cursor data(fields.take(size));
+    if (!fields.done()) corrupt("property '" + name + "' with bytes after its data");
+    if ((r.type == kIntProperty || r.type == kRealProperty) && size != 8) {
+      corrupt("number property '" + name + "' of " + str(size) + " bytes");  // IntPropRecord::GetValue reads 8
+    }
+    if (r.type == kStringProperty) {  // PlayerDevice passes it to strlen
+      const auto text = data.take(size);
+      if (size == 0 || std::find(text.begin(), text.end(), std::uint8_t{0}) != text.end() - 1) {
+        corrupt("string property '" + name + "' is not one NUL-terminated string");
+      }
+      return;
+    }
+    apply_property(node, r.type, name, data, size);
+  }
+
+  // The properties PlayerDevice turns into the stream's video mode, frame size and
+  // field of view (OnNodeIntPropChanged, OnNodeGeneralPropChanged, PlayerNode's
+  // xnRealWorldTranslationData); any other name is stored as an opaque value.
+  void apply_property(DepthNode& node, std::uint32_t type, const std::string& name, Cursor& data, std::uint32_t size) {
+    const bool general = type == kGeneralProperty;
+    const bool shapes_frames = name == "xnMapOutputMode" || name == "oniPixelFormat" || name == "xnPixelFormat" ||
+                               name == "oniRequiredFrameSize" || name == "RequiredDataSize" || name == "xnCropping";
+    // The Recorder writes these when the stream is attached, before NodeDataBegin; the
+    // player's stream takes its frame buffer size when it starts, at NodeDataBegin.
+    if (shapes_frames && node.data_begun) corrupt("property '" + name + "' set after NodeDataBegin");
+    if (name == "xnRealWorldTranslationData") corrupt("legacy property xnRealWorldTranslationData not supported");
+    if (general && name == "xnMapOutputMode") {
+      expect_size(name, size, 12);
+      node.width = data.u32();
+      node.height = data.u32();
+      data.u32();  // frames per second
+      check_mode(node);
+    } else if (general && name == "xnFOV") {
+      expect_size(name, size, 16);
+      check_fov(data.f64(), "horizontal");
+      check_fov(data.f64(), "vertical");
+    } else if (general && name == "xnCropping") {
+      expect_size(name, size, 12);
+      if (data.u32() != 0) corrupt("cropped depth (xnCropping enabled) not supported");
+    } else if (type == kIntProperty && name == "oniPixelFormat") {
+      const std::uint64_t format = data.u64();
+      if (format != kDepth1mm && format != kDepth100um) corrupt("pixel format " + str(format) + " is not a depth format");
+      node.pixel_format = static_cast<int>(format);
+    } else if (type == kIntProperty && name == "xnPixelFormat") {
+      node.pixel_format = kDepth1mm;  // what PlayerDevice sets for a depth source, whatever the value
+    } else if (type == kIntProperty && (name == "oniRequiredFrameSize" || name == "RequiredDataSize")) {
+      node.required_frame_size = data.u64();
+    } else if (type == kIntProperty && name == "xnDeviceMaxDepth") {
+      node.has_max_depth = true;  // PlayerCodecFactory needs it to create the 16zT codec
+    }
+  }
+
+  static void expect_size(const std::string& name, std::uint32_t size, std::uint32_t expected) {
+    if (size != expected) corrupt("property '" + name + "' of " + str(size) + " bytes, expected " + str(expected));
+  }
+
+  static void check_fov(double radians, const char* which) {
+    if (!(radians > 0.0 && radians < std::numbers::pi)) corrupt(std::string(which) + " field of view outside (0, pi)");
+  }
+
+  static void check_mode(const DepthNode& node) {
+    if (node.width == 0 || node.height == 0 || node.width > kMaxOniDepthSide || node.height > kMaxOniDepthSide) {
+      corrupt("depth mode " + str(node.width) + "x" + str(node.height) + " outside 1.." + str(kMaxOniDepthSide) + " a side");
+    }
+    if (2ull * node.width * node.height > kOniPlayerDataMaxBytes) {
+      corrupt("depth mode " + str(node.width) + "x" + str(node.height) + " exceeds OpenNI2's player frame buffer");
+    }
+  }
+
+  void state_ready(const RecordHeader& r) {
+    DepthNode& node = live_node(r);
+    check_no_fields(r);
+    check_undo(r, 0);
+    if (node.ready) corrupt("a second NodeStateReady record");
+    if (node.codec == kCodec16zT && !node.has_max_depth) corrupt("16zT depth without xnDeviceMaxDepth");
+    node.ready = true;  // the player creates the node's codec here
+  }
+
+  void data_begin(const RecordHeader& r) {
+    DepthNode& node = live_node(r);
+    Cursor fields(r.fields);
+    fields.u32();  // frame count and max timestamp: the Recorder writes placeholders
+    fields.u64();
+    if (!fields.done()) corrupt("NodeDataBegin record with " + str(r.fields.size()) + " bytes of fields");
+    check_undo(r, 0);
+    if (!node.ready || node.data_begun) corrupt("NodeDataBegin record out of order");
+    check_frame_shape(node);
+    node.data_begun = true;
+  }
+
+  void new_data(const RecordHeader& r) {
+    DepthNode& node = live_node(r);
+    const std::uint64_t frame = node.frame_offsets.size();
+    try {
+      Cursor fields(r.fields);
+      const std::uint64_t timestamp = fields.u64();
+      const std::uint32_t number = fields.u32();
+      if (!fields.done()) corrupt("NewData record with " + str(r.fields.size()) + " bytes of fields");
+      if (!node.data_begun) corrupt("depth data before its NodeDataBegin record");
+      check_undo(r, node.frame_offsets.empty() ? 0 : node.frame_offsets.back());
+      if (number != frame + 1) corrupt("frame number " + str(number) + ", expected " + str(frame + 1));
+      if (frame >= node.declared_frames) corrupt("more frames than the " + str(node.declared_frames) + " declared");
+      if (timestamp > node.max_timestamp || timestamp > global_max_timestamp_) corrupt("timestamp past the declared maximum");
+      if (!node.frame_timestamps.empty() && timestamp < node.frame_timestamps.back()) corrupt("timestamp goes backwards");
+      check_payload(node, r.payload);
+      node.frame_offsets.push_back(r.offset);
+      node.frame_timestamps.push_back(timestamp);
+    } catch (Corrupt& c) {
+      c.text = "frame " + str(frame) + ": " + c.text;
+      throw;
+    }
+  }
+
+  // What PlayerStream will hand out, fixed from NodeDataBegin on: width x height 2-byte
+  // pixels in a buffer of the required frame size (PlayerStream::OnNewDataCallback).
+  static void check_frame_shape(const DepthNode& node) {
+    if (node.width == 0) corrupt("no depth mode (xnMapOutputMode) before NodeDataBegin");
+    const std::uint64_t bytes = 2ull * node.width * node.height;
+    if (node.required_frame_size &&
+        (*node.required_frame_size < bytes || *node.required_frame_size > kOniPlayerDataMaxBytes)) {
+      corrupt("required frame size " + str(*node.required_frame_size) + " does not fit the " + str(node.width) + "x" +
+              str(node.height) + " depth mode (" + str(bytes) + " bytes)");
+    }
+  }
+
+  void check_payload(const DepthNode& node, std::span<const std::uint8_t> payload) {
+    const std::size_t pixels = std::size_t{node.width} * node.height;
+    if (node.codec == kCodecNone) {
+      if (payload.size() != 2 * pixels) {
+        corrupt("uncompressed frame of " + str(payload.size()) + " bytes, expected " + str(2 * pixels));
+      }
+      return;
+    }
+    pixels_.resize(pixels);
+    if (const auto problem = decode_16zt(payload, pixels_)) corrupt(*problem);
+  }
+
+  void node_removed(const RecordHeader& r) {
+    DepthNode& node = live_node(r);
+    check_no_fields(r);
+    check_undo(r, node.added_at);
+    node.removed = true;
+  }
+
+  void seek_table(const RecordHeader& r) {
+    if (!node_ || node_->id != r.node) corrupt("seek table of node " + str(r.node) + ", which was never added");
+    check_no_fields(r);
+    check_undo(r, 0);
+    if (node_->seek_table) corrupt("a second seek table");
+    node_->seek_table = r;
+  }
+
+  // After the End record: the counts and the seek table agree with the frames.
+  OniRecordingFacts finish() {
+    if (!node_) corrupt("no depth stream");
+    const DepthNode& node = *node_;
+    const std::uint64_t frames = node.frame_offsets.size();
+    if (frames == 0) corrupt("holds no depth frames");
+    if (frames != node.declared_frames) {
+      corrupt("declares " + str(node.declared_frames) + " frames but holds " + str(frames) + " (unfinished recording?)");
+    }
+    if (node.seek_table_position != 0) check_seek_table(node);
+    OniRecordingFacts facts;
+    facts.frames = static_cast<std::uint32_t>(frames);
+    facts.width = static_cast<int>(node.width);
+    facts.height = static_cast<int>(node.height);
+    facts.pixel_format = node.pixel_format;
+    facts.codec = node.codec;
+    return facts;
+  }
+
+  // The table the player loads when the stream is added (HandleNodeAddedRecord,
+  // HandleDataIndexRecord): frames + 1 entries, entry i pointing at frame i's record.
+  static void check_seek_table(const DepthNode& node) {
+    const std::string where = "seek table at byte " + str(node.seek_table_position) + ": ";
+    if (!node.seek_table || node.seek_table->offset != node.seek_table_position) {
+      corrupt(where + "the stream's seek table position is not its SeekTable record");
+    }
+    const auto payload = node.seek_table->payload;
+    const std::size_t frames = node.frame_offsets.size();
+    if (payload.size() != (frames + 1) * kSeekEntryBytes) {
+      corrupt(where + str(payload.size()) + " bytes for " + str(frames) + " frames");
+    }
+    for (std::size_t i = 1; i <= frames; ++i) {
+      Cursor entry(payload.subspan(i * kSeekEntryBytes, kSeekEntryBytes));
+      const std::uint64_t timestamp = entry.u64();
+      entry.u32();  // configuration id
+      const std::uint64_t position = entry.u64();
+      if (timestamp != node.frame_timestamps[i - 1] || position != node.frame_offsets[i - 1]) {
+        corrupt(where + "entry " + str(i) + " does not match frame " + str(i - 1));
+      }
+    }
+  }
+
+  std::span<const std::uint8_t> bytes_;
+  std::uint64_t global_max_timestamp_ = 0;
+  std::uint32_t max_node_id_ = 0;
+  std::optional<DepthNode> node_;
+  std::vector<std::uint64_t> record_offsets_;
+  std::vector<std::uint16_t> pixels_;
+};
+
+// A file mapped read-only for the lifetime of the object.
+class MappedFile {
+ public:
+  explicit MappedFile(const std::filesystem::path& path) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) throw Error("cannot open " + path.string() + ": " + std::strerror(errno));
+    struct stat info {};
+    if (::fstat(fd_, &info) == 0) {
+      size_ = static_cast<std::size_t>(info.st_size);
+      void* data = size_ == 0 ? nullptr : ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd_, 0);
+      if (data != MAP_FAILED) {
+        data_ = static_cast<const std::uint8_t*>(data);
+        return;
+      }
+    }
+    const std::string reason = std::strerror(errno);
+    ::close(fd_);
+    throw Error("cannot read " + path.string() + ": " + reason);
+  }
+  ~MappedFile() {
+    if (data_ != nullptr) ::munmap(const_cast<std::uint8_t*>(data_), size_);
+    if (fd_ >= 0) ::close(fd_);
+  }
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  std::span<const std::uint8_t> bytes() const { return {data_, size_}; }
+
+ private:
+  int fd_ = -1;
+  const std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+}  // namespace
+
+OniRecordingFacts check_oni_recording(std::span<const std::uint8_t> bytes, std::string_view name) {
+  try {
+    return OniChecker(bytes).run();
+  } catch (const Corrupt& c) {
+    throw Error(std::string(name) + ": not a readable .oni recording: " + c.text);
+  }
+}
+
+OniRecordingFacts check_oni_file(const std::filesystem::path& path) {
+  const MappedFile file(path);
+  return check_oni_recording(file.bytes(), path.string());
+}
+
+}  // namespace lccp::detail

@@ -1,0 +1,54 @@
+#pragma once
+// Our own structural check of an .oni recording, made before OpenNI2's file
+// driver (libOniFile) sees the file: that driver trusts every size and index in
+// the file, so a corrupt recording can make it corrupt its heap or spin.
+//
+// The layout, from OpenNI2's public source (Source/Drivers/OniFile/DataRecords.h,
+// PlayerNode.cpp; Source/Core/OniRecorder.cpp, OniDataRecords.cpp):
+//   file header (24 bytes): "NI10", version {u8 major, u8 minor, u16 maintenance,
+//     u32 build}, u64 global max timestamp, u32 max node id;
+//   then records, each a 28-byte header: u32 magic "NIR\0", u32 type, u32 node id,
+//     u32 fields size (header included), u32 payload size, u64 undo record position;
+//     then the record's fields, then its payload; the last record is End (0x0B).
+// All integers little-endian.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace lccp::detail {
+
+// What we accept, besides a well-formed file: one depth stream (OpenNI2's
+// Recorder writes exactly this for a depth-only recording), 16zT-compressed or
+// uncompressed, in 1 mm or 100 um units, at most this many pixels a side, and a
+// frame that fits OpenNI2's player buffer (PlayerNode::DATA_MAX_SIZE,
+// 1600 x 1200 x 3 bytes).
+inline constexpr int kMaxOniDepthSide = 4096;
+inline constexpr std::uint64_t kOniPlayerDataMaxBytes = 1600ull * 1200 * 3;
+
+struct OniRecordingFacts {
+  std::uint32_t frames = 0;
+  int width = 0;
+  int height = 0;
+  int pixel_format = 0;     // openni::PixelFormat: 100 (1 mm) or 101 (100 um)
+  std::uint32_t codec = 0;  // XnCodecID: '16zT' or 'NONE' as a little-endian u32
+};
+
+// Walks every record of the recording in `bytes` and decodes every depth frame
+// with a bounded decoder. Returns what it found, or throws lccp::Error with one
+// line "NAME: ..." naming the first inconsistency (and its byte offset). Reads
+// only inside `bytes`; time and memory are linear in its size (fuzzing entry point).
+OniRecordingFacts check_oni_recording(std::span<const std::uint8_t> bytes, std::string_view name);
+
+// The same for a file, mapped read-only. Throws lccp::Error naming the path.
+OniRecordingFacts check_oni_file(const std::filesystem::path& path);
+
+// Decodes one 16zT frame (XnStreamCompression.cpp, XnStreamUncompressDepth16ZWithEmbTable)
+// into exactly `out.size()` pixels. Returns nullopt on success, or what is wrong:
+// a read past the input, a table index past the table, too many or too few pixels.
+std::optional<std::string> decode_16zt(std::span<const std::uint8_t> in, std::span<std::uint16_t> out);
+
+}  // namespace lccp::detail
