@@ -1,6 +1,8 @@
 #include "depth_stream.hpp"
 
+#include <cmath>
 #include <cstring>
+#include <numbers>
 
 #include <spdlog/spdlog.h>
 
@@ -20,7 +22,34 @@ bool is_depth_format(openni::PixelFormat format) {
   return format == openni::PIXEL_FORMAT_DEPTH_1_MM || format == openni::PIXEL_FORMAT_DEPTH_100_UM;
 }
 
+// 0 is "unknown" (back_project refuses it per frame); NaN, negative or >= pi is garbage.
+bool is_field_of_view(float radians) { return radians >= 0.0f && radians < std::numbers::pi_v<float>; }
+
 }  // namespace
+
+std::optional<std::string> depth_frame_problem(const DepthFrameLayout& f) {
+  if (!is_depth_format(static_cast<openni::PixelFormat>(f.pixel_format))) {
+    return "pixel format " + std::to_string(f.pixel_format) + " is not depth in 1 mm or 100 um";
+  }
+  const std::string size = std::to_string(f.width) + "x" + std::to_string(f.height);
+  if (f.width <= 0 || f.height <= 0 || f.width > kMaxDepthSide || f.height > kMaxDepthSide) {
+    return "size " + size + " outside 1.." + std::to_string(kMaxDepthSide) + " a side";
+  }
+  if (f.width != f.mode_width || f.height != f.mode_height) {
+    return "size " + size + " differs from the stream's mode " + std::to_string(f.mode_width) + "x" +
+           std::to_string(f.mode_height);
+  }
+  const std::int64_t row_bytes = std::int64_t{f.width} * 2;
+  if (f.stride_bytes < row_bytes) {
+    return "row stride " + std::to_string(f.stride_bytes) + " bytes is shorter than a row of " + std::to_string(row_bytes);
+  }
+  const std::int64_t needed = std::int64_t{f.stride_bytes} * (f.height - 1) + row_bytes;
+  if (!f.has_data || f.data_bytes < needed) {
+    return "holds " + std::to_string(f.has_data ? f.data_bytes : 0) + " bytes, " + size + " depth needs " +
+           std::to_string(needed);
+  }
+  return std::nullopt;
+}
 
 DepthStream::~DepthStream() {
   if (started_) stream_.stop();
@@ -96,28 +125,44 @@ std::optional<Frame> DepthStream::wait_and_read(int timeout_ms, const std::atomi
     if (openni::OpenNI::waitForAnyStream(streams, 1, &ready, kWaitSliceMs) != openni::STATUS_OK) continue;
     openni::VideoFrameRef frame;
     if (stream_.readFrame(&frame) != openni::STATUS_OK || !frame.isValid()) continue;
-    return to_frame(frame);
+    return to_frame(frame, frames_read_++);
   }
   return std::nullopt;
 }
 
-Frame DepthStream::to_frame(const openni::VideoFrameRef& frame) const {
-  const auto& stream = const_cast<openni::VideoStream&>(stream_);
+// Every size and format is checked before a byte is read: OpenNI2 hands on what
+// the device or file declares (PlayerStream::OnNewDataCallback caps the data at
+// the required frame size but keeps the declared width and height).
+Frame DepthStream::to_frame(const openni::VideoFrameRef& frame, std::uint64_t number) const {
+  auto& stream = const_cast<openni::VideoStream&>(stream_);
+  const openni::VideoMode mode = stream.getVideoMode();
+  DepthFrameLayout layout;
+  layout.pixel_format = frame.getVideoMode().getPixelFormat();
+  layout.width = frame.getWidth();
+  layout.height = frame.getHeight();
+  layout.stride_bytes = frame.getStrideInBytes();
+  layout.data_bytes = frame.getDataSize();
+  layout.has_data = frame.getData() != nullptr;
+  layout.mode_width = mode.getResolutionX();
+  layout.mode_height = mode.getResolutionY();
+  const std::string where = uri_ + ": frame " + std::to_string(number) + ": ";
+  if (const auto problem = depth_frame_problem(layout)) throw Error(where + *problem);
   DepthImage image;
-  image.width = static_cast<std::uint32_t>(frame.getWidth());
-  image.height = static_cast<std::uint32_t>(frame.getHeight());
+  image.width = static_cast<std::uint32_t>(layout.width);
+  image.height = static_cast<std::uint32_t>(layout.height);
   image.horizontal_fov_rad = stream.getHorizontalFieldOfView();
   image.vertical_fov_rad = stream.getVerticalFieldOfView();
+  if (!is_field_of_view(image.horizontal_fov_rad) || !is_field_of_view(image.vertical_fov_rad)) {
+    throw Error(where + "field of view outside [0, pi)");
+  }
   image.depth_mm.resize(std::size_t{image.width} * image.height);
   const auto* bytes = static_cast<const std::uint8_t*>(frame.getData());
   const std::size_t row_bytes = image.width * sizeof(std::uint16_t);
   for (std::uint32_t row = 0; row < image.height; ++row) {
-    std::memcpy(&image.depth_mm[std::size_t{row} * image.width], bytes + std::size_t{row} * frame.getStrideInBytes(), row_bytes);
+    std::memcpy(&image.depth_mm[std::size_t{row} * image.width], bytes + std::size_t{row} * layout.stride_bytes, row_bytes);
   }
-  if (frame.getVideoMode().getPixelFormat() == openni::PIXEL_FORMAT_DEPTH_100_UM) {
+  if (layout.pixel_format == openni::PIXEL_FORMAT_DEPTH_100_UM) {
     for (std::uint16_t& d : image.depth_mm) d = static_cast<std::uint16_t>((d + 5) / 10);
-  } else if (frame.getVideoMode().getPixelFormat() != openni::PIXEL_FORMAT_DEPTH_1_MM) {
-    throw Error(uri_ + " sends depth in an unsupported pixel format");
   }
   Frame out;
   out.index = static_cast<std::uint64_t>(frame.getFrameIndex());

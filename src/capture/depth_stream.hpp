@@ -1,6 +1,7 @@
 #pragma once
 // One OpenNI2 device and its depth stream (internal to the capture sources).
 #include <atomic>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -10,6 +11,25 @@
 #include "lccp/frame.hpp"
 
 namespace lccp::detail {
+
+// The largest depth image accepted from OpenNI2, per side.
+inline constexpr int kMaxDepthSide = 4096;
+
+// What an openni::VideoFrameRef says about its pixels, and the stream's declared mode.
+struct DepthFrameLayout {
+  int pixel_format = 0;  // openni::PixelFormat
+  int width = 0;
+  int height = 0;
+  int stride_bytes = 0;
+  int data_bytes = 0;    // getDataSize()
+  bool has_data = false; // getData() != nullptr
+  int mode_width = 0;    // the stream's video mode
+  int mode_height = 0;
+};
+
+// Why the frame's pixels cannot be read as width x height 2-byte depth values in
+// 1 mm or 100 um units within its data (one line), or nullopt if they can.
+std::optional<std::string> depth_frame_problem(const DepthFrameLayout& frame);
 
 class DepthStream : private openni::OpenNI::DeviceDisconnectedListener {
  public:
@@ -38,7 +58,8 @@ class DepthStream : private openni::OpenNI::DeviceDisconnectedListener {
 
  private:
   void onDeviceDisconnected(const openni::DeviceInfo* info) override;
-  Frame to_frame(const openni::VideoFrameRef& frame) const;
+  // Throws lccp::Error "<uri>: frame <number>: ..." for a frame depth_frame_problem refuses.
+  Frame to_frame(const openni::VideoFrameRef& frame, std::uint64_t number) const;
 
   openni::Device device_;
   openni::VideoStream stream_;
@@ -46,6 +67,7 @@ class DepthStream : private openni::OpenNI::DeviceDisconnectedListener {
   bool listening_ = false;
   bool started_ = false;
   std::atomic<bool> lost_{false};
+  std::uint64_t frames_read_ = 0;
 };
 
 }  // namespace lccp::detail
