@@ -10,12 +10,32 @@
 namespace lccp::virtual_sensor {
 namespace {
 
+constexpr std::size_t kMaxUriBytes = 4096;   // OpenNI2 itself passes at most ONI_MAX_STR (256)
+constexpr std::size_t kMaxQuotedBytes = 120;
+
+// `text` for a one-line message: bytes outside printable ASCII as \xHH, cut after
+// kMaxQuotedBytes bytes (a URI may hold anything, even newlines or NUL).
+std::string quoted(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kMaxQuotedBytes; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      out += {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
+    }
+  }
+  if (text.size() > kMaxQuotedBytes) out += "...";
+  return out;
+}
+
 std::uint64_t parse_count(std::string_view uri, std::string_view key, std::string_view value) {
   std::uint64_t number = 0;
   const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
   if (value.empty() || error != std::errc() || end != value.data() + value.size()) {
-    throw Error("virtual sensor URI '" + std::string(uri) + "': " + std::string(key) + "=" + std::string(value) +
-                " is not a non-negative integer");
+    throw Error("virtual sensor URI '" + quoted(uri) + "': " + quoted(key) + "=" + quoted(value) +
+                (error == std::errc::result_out_of_range ? " is out of range" : " is not a non-negative integer"));
   }
   return number;
 }
@@ -26,9 +46,12 @@ bool is_virtual_uri(std::string_view uri) { return uri.starts_with(kUriScheme); 
 
 VirtualUri parse_virtual_uri(std::string_view uri) {
   const auto fail = [&](const std::string& problem) {
-    throw Error("virtual sensor URI '" + std::string(uri) + "': " + problem);
+    throw Error("virtual sensor URI '" + quoted(uri) + "': " + problem);
   };
   if (!is_virtual_uri(uri)) fail("does not start with " + std::string(kUriScheme));
+  if (uri.size() > kMaxUriBytes) fail("longer than " + std::to_string(kMaxUriBytes) + " bytes");
+  const auto control = std::find_if(uri.begin(), uri.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  if (control != uri.end()) fail("control character at byte " + std::to_string(control - uri.begin()));
 
   const std::string_view rest = uri.substr(kUriScheme.size());
   const auto question = rest.find('?');
@@ -41,7 +64,7 @@ VirtualUri parse_virtual_uri(std::string_view uri) {
   } else if (source == "clouds") {
     parsed.kind = SourceKind::clouds;
   } else {
-    fail("unknown source '" + std::string(source) +
+    fail("unknown source '" + quoted(source) +
          "' (expected virtual://synthetic[?seed=N][&frames=N] or virtual://clouds?path=P[&frames=N])");
   }
 
@@ -52,10 +75,10 @@ VirtualUri parse_virtual_uri(std::string_view uri) {
     begin = end + 1;
 
     const auto equals = option.find('=');
-    if (equals == std::string_view::npos) fail("option '" + std::string(option) + "' is not key=value");
+    if (equals == std::string_view::npos) fail("option '" + quoted(option) + "' is not key=value");
     const std::string_view key = option.substr(0, equals);
     const std::string_view value = option.substr(equals + 1);
-    if (!seen.insert(key).second) fail("option '" + std::string(key) + "' given twice");
+    if (!seen.insert(key).second) fail("option '" + quoted(key) + "' given twice");
 
     if (key == "frames") {
       parsed.frame_limit = parse_count(uri, key, value);
@@ -66,7 +89,7 @@ VirtualUri parse_virtual_uri(std::string_view uri) {
       if (value.empty()) fail("path is empty");
       parsed.path = std::filesystem::path(std::string(value));
     } else {
-      fail("unknown option '" + std::string(key) + "' for virtual://" + std::string(source));
+      fail("unknown option '" + quoted(key) + "' for virtual://" + quoted(source));
     }
   }
   if (parsed.kind == SourceKind::clouds && parsed.path.empty()) fail("virtual://clouds needs ?path=P");

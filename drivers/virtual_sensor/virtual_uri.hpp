@@ -27,8 +27,11 @@ struct VirtualUri {
 // True if `uri` is in the virtual sensor's scheme (whether or not it parses).
 bool is_virtual_uri(std::string_view uri);
 
-// Parses a virtual sensor URI. Throws lccp::Error with one line naming the URI
-// and what is wrong with it (unknown source, unknown or repeated option, bad number).
+// Parses a virtual sensor URI; any string is safe to pass (the fuzzing entry point,
+// tests/fuzz/fuzz_uri.cpp). Throws lccp::Error with one line naming the URI (bytes
+// outside printable ASCII escaped, cut after 120 bytes) and what is wrong with it:
+// unknown source, unknown or repeated option, a number that is not a non-negative
+// integer or exceeds 64 bits, a control character or NUL anywhere, over 4096 bytes.
 VirtualUri parse_virtual_uri(std::string_view uri);
 
 }  // namespace lccp::virtual_sensor
