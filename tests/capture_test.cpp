@@ -5,10 +5,13 @@
 
 #include <OpenNI.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
+#include <vector>
 
 #include "lccp/capture/cloud_files.hpp"
 #include "lccp/capture/openni_session.hpp"
@@ -18,6 +21,9 @@
 #include "lccp/synthetic/tabletop_scene.hpp"
 #include "expect_error.hpp"
 #include "test_files.hpp"
+// The virtual sensor's URI parser lives in its driver module, which the tests
+// load through OpenNI2 only: compile the parser in (as tests/fuzz/fuzz_uri does).
+#include "../drivers/virtual_sensor/virtual_uri.cpp"
 
 namespace lccp {
 namespace {
@@ -267,6 +273,80 @@ TEST(LiveDevice, UriWithoutDeviceIsAnError) {
   expect_lccp_error([&] { open_device(options); }, {"cannot open device", "virtual://no-such-scene"});
   options.uri = "usb://0000/0000";
   expect_lccp_error([&] { open_device(options); }, {"cannot open device", "usb://0000/0000"});
+}
+
+// --- virtual sensor URIs -------------------------------------------------------------
+
+using virtual_sensor::parse_virtual_uri;
+
+TEST(VirtualUri, DocumentedFormsParse) {
+  EXPECT_EQ(parse_virtual_uri("virtual://synthetic").seed, 1u);
+  const auto limited = parse_virtual_uri("virtual://synthetic?frames=18446744073709551615&seed=7");
+  EXPECT_EQ(limited.frame_limit, std::numeric_limits<std::uint64_t>::max());
+  EXPECT_EQ(limited.seed, 7u);
+  const auto clouds = parse_virtual_uri("virtual://clouds?path=/data/a b.pcd");
+  EXPECT_EQ(clouds.kind, virtual_sensor::SourceKind::clouds);
+  EXPECT_EQ(clouds.path, fs::path("/data/a b.pcd"));
+}
+
+// Any string parses or throws one printable line of bounded length.
+void expect_uri_refused(const std::string& uri, std::initializer_list<std::string> parts) {
+  SCOPED_TRACE(::testing::PrintToString(uri));
+  try {
+    parse_virtual_uri(uri);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_LT(message.size(), 400u);
+    EXPECT_TRUE(std::all_of(message.begin(), message.end(), [](char c) { return c >= 0x20 && c < 0x7f; })) << message;
+    for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+  }
+}
+
+TEST(VirtualUri, BadNumbersOptionsAndBytesAreOneLineErrors) {
+  expect_uri_refused("virtual://synthetic?frames=18446744073709551616", {"out of range"});
+  expect_uri_refused("virtual://synthetic?frames=-1", {"not a non-negative integer"});
+  expect_uri_refused("virtual://synthetic?frames=+1", {"not a non-negative integer"});
+  expect_uri_refused("virtual://synthetic?frames=0", {"at least 1"});
+  expect_uri_refused("virtual://synthetic?seed=1e3", {"seed=1e3"});
+  expect_uri_refused("virtual://synthetic?seed=1&seed=2", {"given twice"});
+  expect_uri_refused("virtual://synthetic?&", {"not key=value"});
+  expect_uri_refused("virtual://synthetic?=1", {"unknown option"});
+  expect_uri_refused("virtual://", {"unknown source"});
+  expect_uri_refused("virtual://clouds", {"needs ?path=P"});
+  expect_uri_refused("virtual://clouds?path=", {"path is empty"});
+  expect_uri_refused(std::string("virtual://clouds?path=/tmp/a\0b.pcd", 34), {"control character at byte 28", "\\x00"});
+  expect_uri_refused("virtual://synthetic?seed=1\n", {"control character", "\\x0a"});
+  expect_uri_refused("virtual://synthetic?seed=\xff", {"\\xff"});
+  expect_uri_refused("virtual://synthetic?seed=" + std::string(5000, '9'), {"longer than 4096 bytes", "..."});
+  expect_uri_refused("usb://x", {"does not start with virtual://"});
+}
+
+TEST(VirtualUri, RandomStringsParseOrFailCleanly) {
+  const std::vector<std::string> pieces = {"virtual://", "synthetic", "clouds", "?", "&", "=", "seed", "frames", "path",
+                                           "0", "1", "99999999999999999999", "-", "/tmp", std::string(1, '\0'), "\n", "%",
+                                           "\xff", "x"};
+  std::uint64_t state = 99;
+  for (int i = 0; i < 5000; ++i) {
+    std::string uri = i % 2 == 0 ? "virtual://" : "";
+    for (int n = 0; n < 8; ++n) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      uri += pieces[(state >> 33) % pieces.size()];
+    }
+    try {
+      parse_virtual_uri(uri);
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      ASSERT_EQ(message.find('\n'), std::string::npos) << message;
+      ASSERT_EQ(message.find('\0'), std::string::npos) << message;
+    }
+  }
+}
+
+TEST(VirtualUri, OutOfRangeFrameLimitCannotOpenADevice) {
+  LiveOptions options;
+  options.uri = "virtual://synthetic?frames=99999999999999999999999";
+  expect_lccp_error([&] { open_device(options); }, {"cannot open device"});
 }
 
 // --- cloud files --------------------------------------------------------------------
