@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# AddressSanitizer (with LeakSanitizer) + UndefinedBehaviorSanitizer over the whole
+# test suite, built with clang into build-asan together with the libFuzzer targets
+# (tests/fuzz; run by scripts/fuzz.sh), so CI compiles the project only once more.
+# Any report fails: ASan and UBSan abort the process (tests that run the lccp binary
+# see a signal), and the tests fail on it. Suppressions for third-party frames only:
+# tests/sanitizers/. See https://clang.llvm.org/docs/AddressSanitizer.html and
+# https://clang.llvm.org/docs/UndefinedBehaviorSanitizer.html.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source tests/sanitizers/options.sh
+jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
+  -DLCCP_SANITIZE=address,undefined -DLCCP_BUILD_FUZZERS=ON \
+  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF >/dev/null
+# LCCP_ASAN_TARGET: build only that target (scripts/fuzz.sh); LCCP_ASAN_BUILD_ONLY=1: no tests.
+cmake --build build-asan -j"$jobs" ${LCCP_ASAN_TARGET:+--target "$LCCP_ASAN_TARGET"}
+[[ ${LCCP_ASAN_BUILD_ONLY:-0} == 1 ]] && exit 0
+ctest --test-dir build-asan --output-on-failure -j"$jobs" ${LCCP_CTEST_ARGS:-}
