@@ -156,7 +156,9 @@ const StageOutputs& reference(const std::string& name) {
 class Determinism : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
 
 TEST_P(Determinism, EveryStageMatchesTheSingleThreadResultBitwise) {
-  const auto& [name, threads] = GetParam();
+  // Not a structured binding: clang 14 cannot capture one in a lambda (P1091 is in clang 16).
+  const std::string& name = std::get<0>(GetParam());
+  const int threads = std::get<1>(GetParam());
   const StageOutputs& ref = reference(name);
   // Consistency of the reference itself with the pipeline's summary.
   EXPECT_EQ(ref.result.voxel_count, ref.grid.size());
