@@ -227,6 +227,9 @@ TEST_F(OniCheckTest, PropertyFieldsAreChecked) {
   bytes = original;
   put_u32(bytes, oni_property(original, "xnCropping").property_data, 1);
   expect_refused(bytes, {"cropped depth"});
+  bytes = original;
+  bytes[oni_property(original, "xnCropping").offset + 32 + 2] = 'S';  // "xnSropping": an unknown property
+  expect_refused(bytes, {"no xnCropping property", "drop every frame"});
 }
 
 // --- frames and the seek table -------------------------------------------------------

@@ -153,6 +153,7 @@ struct DepthNode {
   int pixel_format = kDepth1mm;  // the player's default for a depth source
   std::optional<std::uint64_t> required_frame_size;
   bool has_max_depth = false;
+  bool has_cropping = false;
   std::vector<std::uint64_t> frame_offsets;
   std::vector<std::uint64_t> frame_timestamps;
   std::optional<RecordHeader> seek_table;
@@ -426,6 +427,7 @@ class OniChecker {
     } else if (general && name == "xnCropping") {
       expect_size(name, size, 12);
       if (data.u32() != 0) corrupt("cropped depth (xnCropping enabled) not supported");
+      node.has_cropping = true;
     } else if (type == kIntProperty && name == "oniPixelFormat") {
       const std::uint64_t format = data.u64();
       if (format != kDepth1mm && format != kDepth100um) corrupt("pixel format " + str(format) + " is not a depth format");
@@ -504,6 +506,8 @@ class OniChecker {
   // pixels in a buffer of the required frame size (PlayerStream::OnNewDataCallback).
   static void check_frame_shape(const DepthNode& node) {
     if (node.width == 0) corrupt("no depth mode (xnMapOutputMode) before NodeDataBegin");
+    // PlayerStream::OnNewDataCallback drops every frame of a stream without a cropping property.
+    if (!node.has_cropping) corrupt("no xnCropping property before NodeDataBegin (OpenNI2 would drop every frame)");
     const std::uint64_t bytes = 2ull * node.width * node.height;
     if (node.required_frame_size &&
         (*node.required_frame_size < bytes || *node.required_frame_size > kOniPlayerDataMaxBytes)) {
