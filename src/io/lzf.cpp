@@ -35,8 +35,12 @@ const char* lzf_decompress(std::span<const std::uint8_t> in, std::span<std::uint
     length += 2;
     if (distance > op) return "back reference before the start of the data";
     if (length > out.size() - op) return "back reference past the declared raw size";
-    // Byte by byte: source and destination may overlap (a repeating pattern).
-    for (std::size_t k = 0; k < length; ++k, ++op) out[op] = out[op - distance];
+    if (distance >= length) {  // disjoint: one copy
+      std::memcpy(out.data() + op, out.data() + op - distance, length);
+      op += length;
+    } else {  // overlapping, a repeating pattern: byte by byte, in order
+      for (std::size_t k = 0; k < length; ++k, ++op) out[op] = out[op - distance];
+    }
   }
   return op == out.size() ? nullptr : "stream ends before the declared raw size";
 }
