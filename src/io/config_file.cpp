@@ -148,7 +148,8 @@ std::string at_line(const YAML::Mark& mark) {
 
 // One `key: value` entry: both must be plain scalars.
 void apply_entry(LccpConfig& config, const YAML::Node& key, const YAML::Node& value, const std::string& file) {
-  if (!key.IsScalar()) throw Error(file + ": a config key must be a plain name, not a list or map" + at_line(key.Mark()));
+  if (!key.IsScalar())
+    throw Error(file + ": a config key must be a plain name, not a list or map" + at_line(key.Mark()));
   const std::string name = key.Scalar();
   if (!value.IsScalar()) throw Error(file + ": config key '" + printable(name) + "' needs a single value");
   try {
