@@ -213,6 +213,9 @@ TEST_F(OniCheckTest, PropertyFieldsAreChecked) {
   bytes[format.offset + 32 + format.property.size()] = 'X';  // the name's NUL
   expect_refused(bytes, {"property name is not one NUL-terminated string"});
   bytes = original;
+  bytes[format.offset + 32 + 3] = '\xFF';  // XnLib's name hash indexes its table with a negative char
+  expect_refused(bytes, {"property name holds a byte outside printable ASCII"});
+  bytes = original;
   put_u32(bytes, format.property_data - 4, 0);  // data size 0, the value still there
   expect_refused(bytes, {"property 'oniPixelFormat' with bytes after its data"});
   bytes = original;

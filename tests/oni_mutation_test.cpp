@@ -145,6 +145,12 @@ TEST_F(OniMutationTest, DepthDataEndingInsideAStep) {
   expect_refused(bytes, "step", {"step.oni", "frame 2", "ends inside a step"});
 }
 
+TEST_F(OniMutationTest, PropertyNameWithBytesAbove127) {
+  std::string bytes = original_;  // xnOSStrCRC32 (XnLib) indexes its table with a signed char
+  put_u32(bytes, oni_property(bytes, "xnPixelFormat").offset + 32 + 7, 0xFFFFFFFF);
+  expect_refused(bytes, "name", {"name.oni", "property name holds a byte outside printable ASCII"});
+}
+
 TEST_F(OniMutationTest, SeekTableOfAnotherSize) {
   std::string bytes = original_;  // HandleDataIndexRecord: entries = payload / 20 against the frame count
   const OniRecord added = oni_records_of(bytes, kOniNodeAdded).at(0);

@@ -113,18 +113,19 @@ class Cursor {
 };
 
 // A string field: u32 size (terminating NUL included), then the bytes
-// (Record::ReadString). Must hold exactly one NUL, at its end.
+// (Record::ReadString). Must hold exactly one NUL, at its end, and printable ASCII
+// before it: the player keys hashes by these names, and XnLib's xnOSStrCRC32
+// indexes its table with a signed char (a byte >= 0x80 reads before the table).
 std::string read_string(Cursor& fields, std::uint32_t max_bytes, const char* what) {
   const std::uint32_t size = fields.u32();
   if (size == 0 || size > max_bytes) corrupt(std::string(what) + " of " + str(size) + " bytes");
   const auto bytes = fields.take(size);
   const auto nul = std::find(bytes.begin(), bytes.end(), std::uint8_t{0});
   if (nul != bytes.end() - 1) corrupt(std::string(what) + " is not one NUL-terminated string");
-  std::string text(bytes.begin(), nul);
-  for (char& c : text) {
-    if (c < 0x20 || c > 0x7e) c = '?';  // it may appear in a one-line message
+  if (std::any_of(bytes.begin(), nul, [](std::uint8_t c) { return c < 0x20 || c > 0x7e; })) {
+    corrupt(std::string(what) + " holds a byte outside printable ASCII");
   }
-  return text;
+  return std::string(bytes.begin(), nul);
 }
 
 struct RecordHeader {
