@@ -79,18 +79,25 @@ TEST_F(OniCheckTest, BytesAfterTheEndRecordAreNeverRead) {
   EXPECT_EQ(check(recording() + std::string(1000, '\xab')).frames, 62u);
 }
 
-TEST_F(OniCheckTest, OurDecoderGivesOpenNI2sPixelsOnEveryFrame) {
-  const std::string bytes = recording();
-  const std::vector<OniRecord> frames = oni_records_of(bytes, kOniNewData);
-  ASSERT_EQ(frames.size(), 62u);
-  const auto source = open_recording(kRecordingsDir / "mosd_scenes.oni");
-  std::vector<std::uint16_t> ours(640 * 480);
-  for (const OniRecord& frame : frames) {
-    const std::optional<Frame> theirs = source->next();
-    ASSERT_TRUE(theirs && theirs->depth);
-    const auto payload = as_bytes(bytes).subspan(frame.offset + frame.fields_size, frame.payload_size);
-    ASSERT_EQ(detail::decode_16zt(payload, ours), std::nullopt);
-    EXPECT_EQ(ours, theirs->depth->depth_mm) << "frame " << theirs->index;
+// Both bundled recordings still replay in full through open_recording (which
+// checks them first), and every frame's pixels equal our own decoder's.
+TEST_F(OniCheckTest, OurDecoderGivesOpenNI2sPixelsOnEveryFrameOfBothRecordings) {
+  for (const std::string* bytes : {mosd_, synthetic_}) {
+    const bool mosd = bytes == mosd_;
+    SCOPED_TRACE(mosd ? "mosd_scenes.oni" : "synthetic_tabletop.oni");
+    const std::vector<OniRecord> frames = oni_records_of(*bytes, kOniNewData);
+    ASSERT_EQ(frames.size(), mosd ? 62u : 60u);
+    const auto source = open_recording(kRecordingsDir / (mosd ? "mosd_scenes.oni" : "synthetic_tabletop.oni"));
+    ASSERT_EQ(source->frame_count(), frames.size());
+    std::vector<std::uint16_t> ours(640 * 480);
+    for (const OniRecord& frame : frames) {
+      const std::optional<Frame> theirs = source->next();
+      ASSERT_TRUE(theirs && theirs->depth);
+      const auto payload = as_bytes(*bytes).subspan(frame.offset + frame.fields_size, frame.payload_size);
+      ASSERT_EQ(detail::decode_16zt(payload, ours), std::nullopt);
+      EXPECT_EQ(ours, theirs->depth->depth_mm) << "frame " << theirs->index;
+    }
+    EXPECT_FALSE(source->next().has_value());
   }
 }
 
