@@ -12,7 +12,7 @@ source tests/sanitizers/options.sh
 jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
   -DLCCP_SANITIZE=address,undefined -DLCCP_BUILD_FUZZERS=ON \
-  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF >/dev/null
+  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_TEST_TIMEOUT=900 >/dev/null
 # LCCP_ASAN_TARGET: build only that target (scripts/fuzz.sh); LCCP_ASAN_BUILD_ONLY=1: no tests.
 cmake --build build-asan -j"$jobs" ${LCCP_ASAN_TARGET:+--target "$LCCP_ASAN_TARGET"}
 [[ ${LCCP_ASAN_BUILD_ONLY:-0} == 1 ]] && exit 0
