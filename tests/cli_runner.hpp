@@ -27,6 +27,11 @@ namespace fs = std::filesystem;
 
 inline const fs::path kBinary = LCCP_BINARY;
 
+// Limits against hangs, not measures of speed: generous enough that a loaded machine or
+// a sanitizer build (several times slower) never reaches them.
+inline constexpr int kRunTimeoutSeconds = 240;   // any run
+inline constexpr int kQuickTimeoutSeconds = 60;  // a run that fails at once or does little
+
 struct RunResult {
   std::string command;  // for failure messages
   int exit_code = -1;   // -1 if the process did not exit normally
@@ -40,7 +45,8 @@ struct RunResult {
 // Runs `timeout SECONDS lccp ARGS...` without a shell, stdin from /dev/null and
 // stdout/stderr into files under `capture_dir`. timeout(1) re-raises a signal
 // that killed lccp, so a crash shows up as `signal`; a hang exits 124.
-inline RunResult run_lccp(const fs::path& capture_dir, const std::vector<std::string>& args, int timeout_seconds = 60) {
+inline RunResult run_lccp(const fs::path& capture_dir, const std::vector<std::string>& args,
+                          int timeout_seconds = kRunTimeoutSeconds) {
   RunResult result;
   result.command = kBinary.string();
   for (const std::string& arg : args) result.command += " " + arg;
@@ -166,7 +172,7 @@ class LccpBinaryTest : public ::testing::Test {
     std::error_code ignored;
     fs::remove_all(root_, ignored);
   }
-  RunResult run(const std::vector<std::string>& args, int timeout_seconds = 60) {
+  RunResult run(const std::vector<std::string>& args, int timeout_seconds = kRunTimeoutSeconds) {
     return run_lccp(capture_, args, timeout_seconds);
   }
 

@@ -55,7 +55,7 @@ class ProfileCliTest : public LccpBinaryTest {
     LccpBinaryTest::SetUp();
     out_ = root_ / "out";
   }
-  RunResult profile(std::vector<std::string> args, int timeout_seconds = 60) {
+  RunResult profile(std::vector<std::string> args, int timeout_seconds = kRunTimeoutSeconds) {
     args.insert(args.begin(), "profile");
     args.insert(args.end(), {"-o", out_.string(), "--quiet", "--log-level", "warn"});
     return run_lccp(capture_, args, timeout_seconds);
@@ -137,19 +137,21 @@ TEST_F(ProfileCliTest, LiveVirtualSensorAccountsForEveryFrame) {
   expect_success(profile({"virtual://synthetic", "--frames", "15"}));
   const std::string report = read_bytes(out_ / "report.json");
   EXPECT_EQ(json_number(report, "frames_received"), 15) << report;
-  EXPECT_EQ(json_number(report, "frames_completed") + json_number(report, "frames_dropped"), 15) << report;
+  // Every frame taken is completed or dropped; frames_dropped also counts the frame
+  // numbers the sensor skipped, which a loaded machine or a sanitizer build makes many.
+  EXPECT_GE(json_number(report, "frames_completed") + json_number(report, "frames_dropped"), 15) << report;
   EXPECT_GE(json_number(report, "frames_completed"), 1) << report;
   EXPECT_EQ(check_frames_csv(), static_cast<std::size_t>(json_number(report, "frames_completed")));
 }
 
 TEST_F(ProfileCliTest, BadArgumentsFailAtOnceAndLeaveNoReports) {
   const std::string recording = (kRecordings / "mosd_scenes.oni").string();
-  expect_usage_error(profile({recording, "--inflight", "0"}, 10));
-  expect_error(profile({(root_ / "absent.oni").string()}, 10), {"absent.oni", "no such file"});
-  expect_error(profile({(root_ / "absent").string()}, 10), {"absent", "no such file"});
-  expect_error(profile({LCCP_TEST_DATA_DIR, "--realtime"}, 10), {"--realtime"});
-  expect_error(profile({"virtual://synthetic", LCCP_TEST_DATA_DIR}, 10), {"virtual://synthetic", "only source"});
-  expect_error(profile({(fs::path(LCCP_CONFIG_DIR) / "p1.yaml").string()}, 10), {"p1.yaml", "not a source"});
+  expect_usage_error(profile({recording, "--inflight", "0"}, kQuickTimeoutSeconds));
+  expect_error(profile({(root_ / "absent.oni").string()}, kQuickTimeoutSeconds), {"absent.oni", "no such file"});
+  expect_error(profile({(root_ / "absent").string()}, kQuickTimeoutSeconds), {"absent", "no such file"});
+  expect_error(profile({LCCP_TEST_DATA_DIR, "--realtime"}, kQuickTimeoutSeconds), {"--realtime"});
+  expect_error(profile({"virtual://synthetic", LCCP_TEST_DATA_DIR}, kQuickTimeoutSeconds), {"virtual://synthetic", "only source"});
+  expect_error(profile({(fs::path(LCCP_CONFIG_DIR) / "p1.yaml").string()}, kQuickTimeoutSeconds), {"p1.yaml", "not a source"});
   EXPECT_FALSE(fs::exists(out_));
 }
 

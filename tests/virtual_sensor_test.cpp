@@ -16,6 +16,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "test_files.hpp"
@@ -61,7 +62,13 @@ std::optional<CapturedFrame> next_frame(openni::VideoStream& stream, int timeout
   return captured;
 }
 
-std::vector<CapturedFrame> read_frames(openni::VideoStream& stream, std::size_t count, int timeout_ms = 2000) {
+// Waits are limits against hangs, not measures of speed: generous enough for a loaded
+// machine or a sanitizer build, where rendering a synthetic frame takes many times longer.
+constexpr int kFrameTimeoutMs = 10000;
+constexpr auto kEventTimeout = std::chrono::seconds(10);
+
+std::vector<CapturedFrame> read_frames(openni::VideoStream& stream, std::size_t count,
+                                       int timeout_ms = kFrameTimeoutMs) {
   std::vector<CapturedFrame> frames;
   while (frames.size() < count) {
     auto frame = next_frame(stream, timeout_ms);
@@ -86,6 +93,18 @@ std::size_t differing_pixels(const std::vector<std::uint16_t>& a, const std::vec
   std::size_t count = 0;
   for (std::size_t i = 0; i + tail < a.size(); ++i) count += a[i] != b[i];
   return count;
+}
+
+// Where two depth images first differ, for failure messages.
+std::string first_difference(const std::vector<std::uint16_t>& a, const std::vector<std::uint16_t>& b) {
+  if (a.size() != b.size()) return "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != b[i]) {
+      return "pixel " + std::to_string(i) + " of " + std::to_string(a.size()) + ": " + std::to_string(a[i]) +
+             " vs " + std::to_string(b[i]);
+    }
+  }
+  return "none";
 }
 
 class VirtualSensor : public ::testing::Test {
@@ -328,21 +347,15 @@ class DisconnectWatcher : public openni::OpenNI::DeviceDisconnectedListener {
   void onDeviceDisconnected(const openni::DeviceInfo* info) override {
     std::lock_guard lock(mutex_);
     uris_.push_back(info->getUri());
-    when_ = Clock::now();
   }
   std::vector<std::string> uris() const {
     std::lock_guard lock(mutex_);
     return uris_;
   }
-  Clock::time_point when() const {
-    std::lock_guard lock(mutex_);
-    return when_;
-  }
 
  private:
   mutable std::mutex mutex_;
   std::vector<std::string> uris_;
-  Clock::time_point when_;
 };
 
 // Registers a listener for the scope, so a failed ASSERT leaves none dangling.
@@ -371,16 +384,17 @@ TEST_F(VirtualSensor, FramesLimitMakesTheDeviceDisappear) {
   openni::VideoStream depth;
   ASSERT_NO_FATAL_FAILURE(create_depth(device, depth));
   ASSERT_EQ(depth.start(), openni::STATUS_OK);
-  const auto started = Clock::now();
-  const std::vector<CapturedFrame> frames = read_frames(depth, 100, 1000);
-  const auto silent = Clock::now();
+  const std::vector<CapturedFrame> frames = read_frames(depth, 5);
   ASSERT_EQ(frames.size(), 5u);  // delivered frames; frame numbers may skip on a loaded machine
-  // The last frame came at ~4/30 s, the timeout ends 1 s after it.
-  EXPECT_LT(std::chrono::duration<double>(silent - started).count(), 2.0);
 
+  // The disconnection is announced (the driver does it one frame period after the
+  // last frame; how soon we see it depends on the machine's load)...
+  const auto announced_by = Clock::now() + kEventTimeout;
+  while (watcher.uris().empty() && Clock::now() < announced_by) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   ASSERT_EQ(watcher.uris(), std::vector<std::string>{uri});
-  // Announced one frame period after the last frame.
-  EXPECT_LT(std::chrono::duration<double>(watcher.when() - frames.back().arrival).count(), 0.5);
+  // ... and no frame comes after the fifth.
+  EXPECT_FALSE(next_frame(depth, 300).has_value());
+  const auto silent = Clock::now();
   // Gone from the device list, cannot be restarted, and stops and closes without hanging.
   openni::Array<openni::DeviceInfo> devices;
   openni::OpenNI::enumerateDevices(&devices);
@@ -389,7 +403,7 @@ TEST_F(VirtualSensor, FramesLimitMakesTheDeviceDisappear) {
   EXPECT_NE(depth.start(), openni::STATUS_OK);
   depth.destroy();
   device.close();
-  EXPECT_LT(std::chrono::duration<double>(Clock::now() - silent).count(), 0.5);
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - silent).count(), 10.0);
 
   openni::Device again;
   EXPECT_NE(again.open(uri.c_str()), openni::STATUS_OK);
@@ -429,7 +443,7 @@ TEST_F(VirtualSensor, LostDeviceCanBeClosedFromTheDisconnectListener) {
   {
     const Listening listening(listener);
     ASSERT_EQ(depth.start(), openni::STATUS_OK);
-    ASSERT_EQ(closed.wait_for(std::chrono::seconds(2)), std::future_status::ready);
+    ASSERT_EQ(closed.wait_for(kEventTimeout), std::future_status::ready);
   }
   EXPECT_FALSE(device.isValid());
   EXPECT_FALSE(depth.isValid());
@@ -542,7 +556,10 @@ TEST_F(VirtualSensor, RecordingIsReplayedByTheOniFileDriver) {
         original != originals.end() ? original->second.depth_mm : scene_depth(sensor_timestamp_us);
     EXPECT_EQ(synthetic::timestamp_us_of_frame(synthetic::frame_of_timestamp_us(sensor_timestamp_us)),
               sensor_timestamp_us);
-    EXPECT_EQ(differing_pixels(frame.depth_mm, expected, 2), 0u) << "replayed frame " << frame.index;
+    EXPECT_EQ(differing_pixels(frame.depth_mm, expected, 2), 0u)
+        << "replayed frame " << frame.index << " (sensor time " << sensor_timestamp_us << " us, "
+        << (original != originals.end() ? "as read from the sensor" : "rendered again")
+        << "), first difference: " << first_difference(frame.depth_mm, expected);
     last_two_changed += differing_pixels(frame.depth_mm, expected) - differing_pixels(frame.depth_mm, expected, 2);
   }
   RecordProperty("last_two_pixels_changed", static_cast<int>(last_two_changed));
