@@ -166,6 +166,10 @@ std::uint64_t finish_recording(const std::filesystem::path& path, std::uint64_t 
 
 // How long the recorder may lag behind the frames we have read before we give up.
 constexpr auto kRecorderCatchUp = std::chrono::seconds(10);
+// The wait for the first frame, if longer than the stall timeout: a device may take a
+// while to deliver it (measured: over 2 s for the virtual sensor in a sanitizer build
+// on a loaded machine, where the stall timeout alone made `record` fail at once).
+constexpr int kFirstFrameTimeoutMs = 20000;
 
 // Reads frames until the recorder has written `frames` of them, `stop` is set, the
 // device is lost or stalls, or the recorder lags kRecorderCatchUp behind. OpenNI2
@@ -178,7 +182,9 @@ std::uint64_t read_until_written(detail::DepthStream& stream, const std::filesys
   std::optional<std::uint64_t> first_index;
   std::optional<std::chrono::steady_clock::time_point> read_enough;
   std::uint64_t read = 0;
-  while (std::optional<Frame> frame = stream.wait_and_read(stall_timeout_ms, stop)) {
+  const int first_frame_timeout_ms = std::max(stall_timeout_ms, kFirstFrameTimeoutMs);
+  while (std::optional<Frame> frame =
+             stream.wait_and_read(first_index ? stall_timeout_ms : first_frame_timeout_ms, stop)) {
     if (!first_index) first_index = frame->index;
     read = frame->index - *first_index + 1;
     if (read < frames) continue;  // the file cannot hold enough yet: no need to look
