@@ -90,5 +90,25 @@ TEST(AtomicFile, ASetWithAnUnwritableMemberWritesNone) {
   EXPECT_EQ(entries(dir), std::vector<std::string>{});
 }
 
+TEST(AtomicFile, ANamedPendingFileIsHiddenUnpredictableAndRemovedUnlessCommitted) {
+  const fs::path dir = test::scratch_dir("atomic");
+  fs::path first;
+  {
+    PendingFile file = PendingFile::named(dir / "take.oni");
+    first = file.temporary_path();
+    EXPECT_EQ(first.parent_path(), dir);
+    EXPECT_EQ(first.filename().string().front(), '.');
+    EXPECT_EQ(first.extension(), ".oni") << "a library may choose its format by the extension";
+    EXPECT_TRUE(fs::exists(first));
+  }
+  EXPECT_EQ(entries(dir), std::vector<std::string>{});
+  PendingFile file = PendingFile::named(dir / "take.oni");
+  EXPECT_NE(file.temporary_path(), first);
+  test::write_bytes(file.temporary_path(), "written by a library");
+  file.commit();
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"take.oni"});
+  EXPECT_EQ(test::read_bytes(dir / "take.oni"), "written by a library");
+}
+
 }  // namespace
 }  // namespace lccp

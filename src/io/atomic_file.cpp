@@ -36,8 +36,8 @@ fs::path random_name_beside(const fs::path& target) {
   if (::getrandom(&bits, sizeof bits, 0) != sizeof bits) fail(target, "getrandom", errno);
   char suffix[24];
   std::snprintf(suffix, sizeof suffix, "%016llx", static_cast<unsigned long long>(bits));
-  std::string name(1, '.');
-  name.append(target.filename().string()).append(".lccp-").append(suffix);
+  std::string name(".lccp-");
+  name.append(suffix).append("-").append(target.filename().string());  // keeps the target's extension
   return folder_of(target) / name;
 }
 
@@ -54,14 +54,20 @@ bool link_anonymous(int fd, const fs::path& name) {
 
 }  // namespace
 
-PendingFile::PendingFile(fs::path target) : target_(std::move(target)) {
+PendingFile::PendingFile(fs::path target) : PendingFile(std::move(target), true) {}
+
+PendingFile PendingFile::named(fs::path target) { return PendingFile(std::move(target), false); }
+
+PendingFile::PendingFile(fs::path target, bool unnamed) : target_(std::move(target)) {
   const fs::path folder = folder_of(target_);
-  fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  if (unnamed) fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
   if (fd_ >= 0) return;  // mode 0644 less the umask, as for any new file
-  if (errno == ENOENT || errno == ENOTDIR) {
+  const int error = errno;
+  std::error_code ignored;
+  if (!fs::is_directory(folder, ignored)) {
     throw Error(target_.string() + ": cannot write (folder '" + folder.string() + "' does not exist)");
   }
-  if (errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL) fail(target_, "open", errno);
+  if (unnamed && error != EOPNOTSUPP && error != EISDIR && error != EINVAL) fail(target_, "open", error);
   for (int attempt = 0; attempt < 8 && fd_ < 0; ++attempt) {
     named_ = random_name_beside(target_);
     fd_ = open_named_exclusive(named_);

@@ -24,6 +24,10 @@ class PendingFile {
  public:
   // Throws lccp::Error naming the target if its folder is missing or not writable.
   explicit PendingFile(std::filesystem::path target);
+  // A pending file that has a (hidden, unpredictable) name from the start, for a
+  // library that must open the file by path itself (openni::Recorder). A kill
+  // before commit() leaves that hidden file behind.
+  static PendingFile named(std::filesystem::path target);
   ~PendingFile();  // discards the file unless committed
   PendingFile(PendingFile&& other) noexcept;
   PendingFile& operator=(PendingFile&&) = delete;
@@ -36,9 +40,13 @@ class PendingFile {
   void commit();
 
   const std::filesystem::path& target() const { return target_; }
+  // The temporary name of a named() pending file (it ends like the target).
+  const std::filesystem::path& temporary_path() const { return named_; }
   int descriptor() const { return fd_; }
 
  private:
+  PendingFile(std::filesystem::path target, bool unnamed);
+
   std::filesystem::path target_;
   std::filesystem::path named_;  // the temporary name, when O_TMPFILE is not available
   int fd_ = -1;
