@@ -1,10 +1,34 @@
 #!/usr/bin/env bash
-# The whole test suite: install, build, run every test with ctest, then the
-# concurrency tests under ThreadSanitizer (scripts/tsan.sh).
+# The whole test suite (CI: .ci/run). Installs what is missing, builds into build/ and
+# runs every test with ctest; then the whole suite again under AddressSanitizer +
+# UndefinedBehaviorSanitizer (clang, build-asan: scripts/asan.sh), the concurrency and
+# pipeline tests under ThreadSanitizer against a TSan-built oneTBB (build-tsan:
+# scripts/tsan.sh), and every libFuzzer target for LCCP_FUZZ_SECONDS (60) seconds
+# (scripts/fuzz.sh). Prints the time each step took.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF
-ctest --test-dir build --output-on-failure -j"$(nproc)"
-# The concurrency tests again, under ThreadSanitizer.
-bash scripts/tsan.sh
+times=()
+step() {
+  local name=$1 start=$SECONDS
+  shift
+  echo "=== test.sh: $name"
+  "$@"
+  times+=("$(printf '%-12s %5d s' "$name" $((SECONDS - start)))")
+  echo "=== test.sh: $name took $((SECONDS - start)) s"
+}
+summary() {
+  echo "=== test.sh: step times"
+  printf '  %s\n' "${times[@]}"
+}
+trap summary EXIT
+
+step install bash scripts/install-deps.sh
+step build bash scripts/build.sh -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF
+step ctest ctest --test-dir build --output-on-failure -j"$(nproc)"
+step asan bash scripts/asan.sh
+step tsan bash scripts/tsan.sh
+for source in tests/fuzz/fuzz_*.cpp; do
+  target=$(basename "$source" .cpp)
+  target=${target#fuzz_}
+  step "fuzz $target" bash scripts/fuzz.sh "$target" "${LCCP_FUZZ_SECONDS:-60}"
+done
