@@ -1,6 +1,4 @@
 // `lccp record`: a device's depth stream into an .oni file with openni::Recorder.
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -18,6 +16,7 @@
 #include "lccp/capture/openni_sources.hpp"
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/error.hpp"
+#include "lccp/io/atomic_file.hpp"
 
 namespace lccp {
 namespace {
@@ -203,9 +202,10 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
   if (output.extension() != ".oni") throw Error("recording " + output.string() + " must have the .oni suffix");
   detail::DepthStream stream;
   stream.open_live(options);
-  // Written beside the output, renamed when complete (the temporary keeps the .oni suffix).
-  const std::filesystem::path partial =
-      output.parent_path() / (".partial-" + std::to_string(::getpid()) + "-" + output.filename().string());
+  // Written under a hidden, unpredictable name beside the output (created exclusively,
+  // keeping the .oni suffix), renamed over it when complete, removed otherwise.
+  PendingFile pending = PendingFile::named(output);
+  const std::filesystem::path& partial = pending.temporary_path();
   std::uint64_t read = 0;
   {
     openni::Recorder recorder;
@@ -222,10 +222,8 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
     recorder.destroy();  // writes the seek table and the End record
   }
   // Exactly `frames` frames: the recorder may have written more than asked for.
-  std::error_code ignored;
   const std::uint64_t written = oni::finish_recording(partial, frames);
   if (written != frames && (written > frames || !stop.load())) {
-    std::filesystem::remove(partial, ignored);
     const std::string after = " after " + std::to_string(written) + " of " + std::to_string(frames) + " frames";
     if (written < frames && stream.lost()) throw Error("device " + stream.uri() + " disconnected" + after);
     if (written < frames && read < frames) throw Error("device " + stream.uri() + " stopped sending frames" + after);
@@ -242,15 +240,10 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
     replays = replay->next().has_value();
   }
   if (!replays || stats.frames != written) {
-    std::filesystem::remove(partial, ignored);
     throw Error("the recording of " + stream.uri() + " does not replay its " + std::to_string(written) +
                 " frames; " + output.string() + " not written");
   }
-  std::filesystem::rename(partial, output, ignored);
-  if (ignored) {
-    std::filesystem::remove(partial, ignored);
-    throw Error("cannot write " + output.string());
-  }
+  pending.commit();
   return stats;
 }
 
