@@ -21,9 +21,7 @@
 #include "lccp/synthetic/tabletop_scene.hpp"
 #include "expect_error.hpp"
 #include "test_files.hpp"
-// The virtual sensor's URI parser lives in its driver module, which the tests
-// load through OpenNI2 only: compile the parser in (as tests/fuzz/fuzz_uri does).
-#include "../drivers/virtual_sensor/virtual_uri.cpp"
+#include "virtual_uri.hpp"  // the virtual sensor's URI parser (lccp_virtual_uri)
 
 namespace lccp {
 namespace {
