@@ -30,14 +30,13 @@
 #include <vector>
 
 #include "lccp/error.hpp"
+#include "oni_format.hpp"
 
 namespace lccp::detail {
 namespace {
 
-constexpr std::size_t kFileHeaderBytes = 24;    // RecordingHeader (DataRecords.h)
-constexpr std::size_t kRecordHeaderBytes = 28;  // Record::Header, 64-bit undo position (format 1.0.1.0)
-constexpr std::uint32_t kRecordMagic = 0x0052494E;  // "NIR\0" (Record::MAGIC)
-constexpr std::size_t kSeekEntryBytes = 20;     // DataIndexEntry: u64 timestamp, u32 configuration, u64 position
+using namespace oni;  // the record layout and its walk (oni_format.hpp)
+
 // The player's record buffer: NewDataRecordHeader::MAX_SIZE (28 + 81 + 8 + 4) + DATA_MAX_SIZE.
 constexpr std::uint64_t kPlayerRecordMaxBytes = 121 + kOniPlayerDataMaxBytes;
 // Our own limits, far above what OpenNI2's Recorder writes (one node, id 1; fields of
@@ -46,22 +45,6 @@ constexpr std::uint32_t kMaxNodeId = 255;
 constexpr std::uint32_t kMaxFieldsBytes = 64 * 1024;
 constexpr std::uint32_t kMaxNodeNameBytes = 80;       // XN_MAX_NAME_LENGTH: the player copies into char[80]
 constexpr std::uint32_t kMaxPropertyNameBytes = 256;  // ONI_MAX_STR, the Recorder's limit
-
-enum RecordType : std::uint32_t {  // DataRecords.h
-  kNodeAddedV1004 = 0x02,
-  kIntProperty = 0x03,
-  kRealProperty = 0x04,
-  kStringProperty = 0x05,
-  kGeneralProperty = 0x06,
-  kNodeRemoved = 0x07,
-  kNodeDataBegin = 0x08,
-  kNodeStateReady = 0x09,
-  kNewData = 0x0A,
-  kEnd = 0x0B,
-  kNodeAddedV1005 = 0x0C,
-  kNodeAdded = 0x0D,
-  kSeekTable = 0x0E,
-};
 
 constexpr std::uint32_t codec_id(char c1, char c2, char c3, char c4) {  // XN_CODEC_ID, XnCodecIDs.h
   return std::uint32_t(std::uint8_t(c4)) << 24 | std::uint32_t(std::uint8_t(c3)) << 16 |
@@ -91,8 +74,8 @@ class Cursor {
     at_ += count;
     return part;
   }
-  std::uint32_t u32() { return static_cast<std::uint32_t>(uint(4)); }
-  std::uint64_t u64() { return uint(8); }
+  std::uint32_t u32() { return read_u32(take(4), 0); }
+  std::uint64_t u64() { return read_u64(take(8), 0); }
   double f64() {
     const std::uint64_t bits = u64();
     double value = 0;
@@ -102,12 +85,6 @@ class Cursor {
   bool done() const { return at_ == bytes_.size(); }
 
  private:
-  std::uint64_t uint(int size) {
-    const auto part = take(size);
-    std::uint64_t value = 0;
-    for (int i = size - 1; i >= 0; --i) value = value << 8 | part[i];
-    return value;
-  }
   std::span<const std::uint8_t> bytes_;
   std::size_t at_ = 0;
 };
@@ -127,17 +104,6 @@ std::string read_string(Cursor& fields, std::uint32_t max_bytes, const char* wha
   }
   return std::string(bytes.begin(), nul);
 }
-
-struct RecordHeader {
-  std::uint64_t offset = 0;
-  std::uint32_t type = 0;
-  std::uint32_t node = 0;
-  std::uint32_t fields_size = 0;
-  std::uint32_t payload_size = 0;
-  std::uint64_t undo = 0;
-  std::span<const std::uint8_t> fields;   // after the 28-byte header
-  std::span<const std::uint8_t> payload;
-};
 
 // The depth stream's declared state, in file order (PlayerDevice::OnNode*PropChanged).
 struct DepthNode {
@@ -253,18 +219,18 @@ class OniChecker {
 
   OniRecordingFacts run() {
     check_file_header();
-    std::uint64_t at = kFileHeaderBytes;
-    for (bool end = false; !end;) {
-      const RecordHeader record = read_record_header(at);
-      try {
-        end = handle(record);
-      } catch (Corrupt& c) {
-        c.text = "record at byte " + str(record.offset) + ": " + c.text;
-        throw;
-      }
+    const RecordWalk walk = walk_records(bytes_);
+    for (const RecordHeader& record : walk.records) {
+      at_record(record.offset, [&] {
+        check_record_header(record);
+        handle(record);
+      });
       record_offsets_.push_back(record.offset);
-      at = record.offset + record.fields_size + record.payload_size;
     }
+    if (walk.stop == WalkStop::end_of_bytes) {
+      corrupt("ends at byte " + str(walk.failed.offset) + " without an End record (truncated?)");
+    }
+    if (walk.stop != WalkStop::end_record) at_record(walk.failed.offset, [&] { unreadable_record(walk); });
     return finish();
   }
 
@@ -288,49 +254,55 @@ class OniChecker {
     if (max_node_id_ > kMaxNodeId) corrupt("header declares node ids up to " + str(max_node_id_));
   }
 
-  RecordHeader read_record_header(std::uint64_t at) {
-    const std::string where = "record at byte " + str(at) + ": ";
-    if (at >= bytes_.size()) corrupt("ends at byte " + str(at) + " without an End record (truncated?)");
-    if (bytes_.size() - at < kRecordHeaderBytes) corrupt(where + "truncated record header (truncated file?)");
-    Cursor cursor(bytes_.subspan(at, kRecordHeaderBytes));
-    RecordHeader r;
-    r.offset = at;
-    if (cursor.u32() != kRecordMagic) corrupt(where + "no record magic NIR");
-    r.type = cursor.u32();
-    r.node = cursor.u32();
-    r.fields_size = cursor.u32();
-    r.payload_size = cursor.u32();
-    r.undo = cursor.u64();
-    if (r.fields_size < kRecordHeaderBytes || r.fields_size > kMaxFieldsBytes) {
-      corrupt(where + "fields size " + str(r.fields_size) + " outside 28.." + str(kMaxFieldsBytes));
+  // Runs `check` on the record at `offset`, naming that offset in what it finds.
+  template <class Check>
+  static void at_record(std::uint64_t offset, Check check) {
+    try {
+      check();
+    } catch (Corrupt& c) {
+      c.text = "record at byte " + str(offset) + ": " + c.text;
+      throw;
     }
-    const std::uint64_t size = std::uint64_t{r.fields_size} + r.payload_size;
-    if (size > bytes_.size() - at) {
-      corrupt(where + "record of " + str(size) + " bytes runs past the end of the file (truncated?)");
-    }
-    if (r.type != kNewData && r.type != kSeekTable && r.payload_size != 0) {
-      corrupt(where + "record type " + str(r.type) + " with a payload");
-    }
-    if (size > kPlayerRecordMaxBytes) corrupt(where + "record of " + str(size) + " bytes exceeds OpenNI2's player buffer");
-    r.fields = bytes_.subspan(at + kRecordHeaderBytes, r.fields_size - kRecordHeaderBytes);
-    r.payload = bytes_.subspan(at + r.fields_size, r.payload_size);
-    return r;
   }
 
-  // Returns true at the End record.
-  bool handle(const RecordHeader& r) {
+  // The record where the walk stopped before an End record.
+  static void unreadable_record(const RecordWalk& walk) {
+    if (walk.stop == WalkStop::truncated_header) corrupt("truncated record header (truncated file?)");
+    if (walk.stop == WalkStop::no_magic) corrupt("no record magic NIR");
+    check_fields_size(walk.failed);
+    const std::uint64_t size = std::uint64_t{walk.failed.fields_size} + walk.failed.payload_size;
+    corrupt("record of " + str(size) + " bytes runs past the end of the file (truncated?)");
+  }
+
+  static void check_fields_size(const RecordHeader& r) {
+    if (r.fields_size < kRecordHeaderBytes || r.fields_size > kMaxFieldsBytes) {
+      corrupt("fields size " + str(r.fields_size) + " outside " + str(kRecordHeaderBytes) + ".." + str(kMaxFieldsBytes));
+    }
+  }
+
+  // What the player's buffers and record handlers take of a record that fits the file.
+  static void check_record_header(const RecordHeader& r) {
+    check_fields_size(r);
+    if (r.type != kNewData && r.type != kSeekTable && r.payload_size != 0) {
+      corrupt("record type " + str(r.type) + " with a payload");
+    }
+    const std::uint64_t size = std::uint64_t{r.fields_size} + r.payload_size;
+    if (size > kPlayerRecordMaxBytes) corrupt("record of " + str(size) + " bytes exceeds OpenNI2's player buffer");
+  }
+
+  void handle(const RecordHeader& r) {
     switch (r.type) {
-      case kNodeAdded: node_added(r); return false;
+      case kNodeAdded: node_added(r); return;
       case kIntProperty:
       case kRealProperty:
       case kStringProperty:
-      case kGeneralProperty: property(r); return false;
-      case kNodeStateReady: state_ready(r); return false;
-      case kNodeDataBegin: data_begin(r); return false;
-      case kNewData: new_data(r); return false;
-      case kNodeRemoved: node_removed(r); return false;
-      case kSeekTable: seek_table(r); return false;
-      case kEnd: check_no_fields(r); return true;
+      case kGeneralProperty: property(r); return;
+      case kNodeStateReady: state_ready(r); return;
+      case kNodeDataBegin: data_begin(r); return;
+      case kNewData: new_data(r); return;
+      case kNodeRemoved: node_removed(r); return;
+      case kSeekTable: seek_table(r); return;
+      case kEnd: check_no_fields(r); return;
       case kNodeAddedV1004:
       case kNodeAddedV1005: corrupt("legacy NodeAdded record (OpenNI 1 format) not supported");
       default: corrupt("unknown record type " + str(r.type));

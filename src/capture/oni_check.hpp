@@ -2,15 +2,7 @@
 // Our own structural check of an .oni recording, made before OpenNI2's file
 // driver (libOniFile) sees the file: that driver trusts every size and index in
 // the file, so a corrupt recording can make it corrupt its heap or spin.
-//
-// The layout, from OpenNI2's public source (Source/Drivers/OniFile/DataRecords.h,
-// PlayerNode.cpp; Source/Core/OniRecorder.cpp, OniDataRecords.cpp):
-//   file header (24 bytes): "NI10", version {u8 major, u8 minor, u16 maintenance,
-//     u32 build}, u64 global max timestamp, u32 max node id;
-//   then records, each a 28-byte header: u32 magic "NIR\0", u32 type, u32 node id,
-//     u32 fields size (header included), u32 payload size, u64 undo record position;
-//     then the record's fields, then its payload; the last record is End (0x0B).
-// All integers little-endian.
+// The record layout, from OpenNI2's public source, is in oni_format.hpp.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

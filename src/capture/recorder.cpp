@@ -1,12 +1,11 @@
 // `lccp record`: a device's depth stream into an .oni file with openni::Recorder.
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <optional>
+#include <span>
 #include <thread>
 #include <vector>
 
@@ -17,124 +16,97 @@
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/atomic_file.hpp"
+#include "oni_format.hpp"
 
 namespace lccp {
 namespace {
 
-// The .oni layout as openni::Recorder writes it (OpenNI2, Source/Core/OniRecorder.cpp
-// and OniDataRecords.cpp): a 24-byte file header, then records. A record is a 28-byte
-// header (magic "NIR\0", type, node id, size of header and fields, payload size:
-// little-endian uint32s; an undo position: uint64), its fields, its payload. One
-// stream gives NodeAdded (name, node type, codec, number of frames, min and max
-// timestamp, seek table position), properties, one NewData per frame (timestamp,
-// frame number 1..N, the compressed depth) and, when the recorder is destroyed,
-// NodeRemoved, SeekTable (an empty entry, then per frame: timestamp, configuration
-// id, position of its NewData; 20 bytes each) and End.
+// What openni::Recorder writes for one stream (OpenNI2, Source/Core/OniRecorder.cpp
+// and OniDataRecords.cpp; the record layout is in oni_format.hpp): NodeAdded (name,
+// node type, codec, number of frames, min and max timestamp, seek table position),
+// properties, one NewData per frame (timestamp, frame number 1..N, the compressed
+// depth) and, when the recorder is destroyed, NodeRemoved, SeekTable (an empty entry,
+// then per frame: timestamp, configuration id, position of its NewData) and End.
 namespace oni {
 
-constexpr std::uint64_t kFileHeaderBytes = 24;
-constexpr std::uint64_t kRecordHeaderBytes = 28;
-constexpr std::uint64_t kSeekEntryBytes = 20;
-constexpr std::uint32_t kNodeRemoved = 0x07;
-constexpr std::uint32_t kNewData = 0x0a;
-constexpr std::uint32_t kEnd = 0x0b;
-constexpr std::uint32_t kNodeAdded = 0x0d;
-constexpr std::uint32_t kSeekTable = 0x0e;
+using namespace detail::oni;
+using Bytes = std::vector<std::uint8_t>;
 
-struct Record {
-  std::uint64_t at = 0;          // offset of the record header
-  std::uint64_t fields_end = 0;  // offset of the payload
-  std::uint64_t end = 0;         // offset of the next record
-  std::uint32_t type = 0;
-};
-
-std::uint32_t u32(const char* bytes) {
-  std::uint32_t value = 0;
-  std::memcpy(&value, bytes, sizeof value);
-  return value;
+// The file's bytes as they are now (empty if it cannot be read).
+Bytes read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+  if (size < 0) return {};
+  Bytes bytes(static_cast<std::size_t>(size));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), size);
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  return bytes;
 }
 
-// The records of a file of `size` bytes up to End, or up to the first one that does
-// not parse or is cut short (a recording still being written ends in a partial one).
-std::vector<Record> scan_records(std::istream& in, std::uint64_t size) {
-  std::vector<Record> records;
-  std::array<char, kRecordHeaderBytes> header{};
-  for (std::uint64_t at = kFileHeaderBytes; at + kRecordHeaderBytes <= size;) {
-    in.seekg(static_cast<std::streamoff>(at));
-    if (!in.read(header.data(), header.size()) || std::memcmp(header.data(), "NIR\0", 4) != 0) break;
-    const std::uint32_t fields = u32(&header[12]);
-    const std::uint64_t end = at + std::uint64_t{fields} + u32(&header[16]);
-    if (fields < kRecordHeaderBytes || end > size) break;
-    records.push_back({at, at + fields, end, u32(&header[4])});
-    if (records.back().type == kEnd) break;
-    at = end;
-  }
-  return records;
-}
-
-std::vector<Record> scan_file(const std::filesystem::path& path) {
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  std::ifstream in(path, std::ios::binary);
-  if (error || !in) return {};
-  return scan_records(in, size);
-}
-
-std::uint64_t count(const std::vector<Record>& records, std::uint32_t type) {
+std::uint64_t count(const std::vector<RecordHeader>& records, std::uint32_t type) {
   return static_cast<std::uint64_t>(
-      std::count_if(records.begin(), records.end(), [&](const Record& r) { return r.type == type; }));
+      std::count_if(records.begin(), records.end(), [&](const RecordHeader& r) { return r.type == type; }));
 }
 
-// Frames the recorder has written so far (it writes on its own thread).
-std::uint64_t frames_written(const std::filesystem::path& path) { return count(scan_file(path), kNewData); }
+// Frames the recorder has written so far (it writes on its own thread): the records
+// up to the first one it has not finished (walk_records).
+std::uint64_t frames_written(const std::filesystem::path& path) {
+  const Bytes bytes = read_file(path);
+  return count(walk_records(bytes).records, kNewData);
+}
 
-const Record* find_one(const std::vector<Record>& records, std::uint32_t type) {
+const RecordHeader* find_one(const std::vector<RecordHeader>& records, std::uint32_t type) {
   return count(records, type) == 1
-             ? &*std::find_if(records.begin(), records.end(), [&](const Record& r) { return r.type == type; })
+             ? &*std::find_if(records.begin(), records.end(), [&](const RecordHeader& r) { return r.type == type; })
              : nullptr;
 }
 
 template <class T>
-void put(std::string& bytes, std::uint64_t at, T value) {
+void put(Bytes& bytes, std::uint64_t at, T value) {
   std::memcpy(bytes.data() + at, &value, sizeof value);
+}
+
+void append(Bytes& out, std::span<const std::uint8_t> bytes, std::uint64_t from, std::uint64_t to) {
+  out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(from), bytes.begin() + static_cast<std::ptrdiff_t>(to));
 }
 
 // The finished recording of one stream cut to its first `frames` frames, as the
 // recorder would have written it for that many: the NewData records after them are
 // left out, the seek table shortened, NodeAdded given the new count, last timestamp
 // and seek table position. Empty if the records are not laid out as expected.
-std::string keep_first_frames(const std::string& bytes, const std::vector<Record>& records, std::uint64_t frames) {
-  std::vector<const Record*> new_data;
-  for (const Record& r : records) {
+Bytes keep_first_frames(std::span<const std::uint8_t> bytes, const std::vector<RecordHeader>& records,
+                        std::uint64_t frames) {
+  std::vector<const RecordHeader*> new_data;
+  for (const RecordHeader& r : records) {
     if (r.type == kNewData) new_data.push_back(&r);
   }
-  const Record* added = find_one(records, kNodeAdded);
-  const Record* removed = find_one(records, kNodeRemoved);
-  const Record* seek = find_one(records, kSeekTable);
-  const Record& end = records.back();
+  const RecordHeader* added = find_one(records, kNodeAdded);
+  const RecordHeader* removed = find_one(records, kNodeRemoved);
+  const RecordHeader* seek = find_one(records, kSeekTable);
+  const RecordHeader& end = records.back();
   if (!added || !removed || !seek || end.type != kEnd || frames == 0 || new_data.size() <= frames ||
-      seek->end - seek->fields_end != (new_data.size() + 1) * kSeekEntryBytes || removed->at < new_data.back()->end) {
+      seek->payload_size != (new_data.size() + 1) * kSeekEntryBytes || removed->offset < new_data.back()->end() ||
+      added->fields.size() < 4) {
     return {};
   }
-  // NodeAdded fields: name (uint32 size, then the bytes), node type, codec, number of
-  // frames (uint32), min and max timestamp, seek table position (uint64).
-  const std::uint64_t name_at = added->at + kRecordHeaderBytes;
-  const std::uint64_t frames_at = name_at + 4 + u32(bytes.data() + name_at) + 8;
-  if (frames_at + 4 + 3 * 8 > added->fields_end) return {};
+  // NodeAdded fields: the name (u32 size, then the bytes), then the fields at kNodeAdded*At.
+  const std::uint64_t after_name = added->offset + kRecordHeaderBytes + 4 + read_u32(added->fields, 0);
+  if (after_name + kNodeAddedBytesAfterName > added->fields_end()) return {};
 
-  std::string out = bytes.substr(0, new_data[frames - 1]->end);
-  out.append(bytes, removed->at, removed->end - removed->at);
+  const RecordHeader& last = *new_data[frames - 1];
+  Bytes out(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(last.end()));
+  append(out, bytes, removed->offset, removed->end());
   const std::uint64_t seek_at = out.size();
-  out.append(bytes, seek->at, seek->fields_end - seek->at);
-  put(out, seek_at + 16, static_cast<std::uint32_t>((frames + 1) * kSeekEntryBytes));
-  out.append(bytes, seek->fields_end, (frames + 1) * kSeekEntryBytes);
-  out.append(bytes, end.at, end.end - end.at);
+  append(out, bytes, seek->offset, seek->fields_end());
+  put(out, seek_at + kRecordPayloadSizeAt, static_cast<std::uint32_t>((frames + 1) * kSeekEntryBytes));
+  append(out, bytes, seek->fields_end(), seek->fields_end() + (frames + 1) * kSeekEntryBytes);
+  append(out, bytes, end.offset, end.end());
 
-  std::uint64_t last_timestamp = 0;
-  std::memcpy(&last_timestamp, bytes.data() + new_data[frames - 1]->at + kRecordHeaderBytes, sizeof last_timestamp);
-  put(out, frames_at, static_cast<std::uint32_t>(frames));
-  put(out, frames_at + 4 + 8, last_timestamp);
-  put(out, frames_at + 4 + 16, seek_at);
+  const std::uint64_t last_timestamp = read_u64(bytes, last.offset + kRecordHeaderBytes);  // NewData's first field
+  put(out, after_name + kNodeAddedFramesAt, static_cast<std::uint32_t>(frames));
+  put(out, after_name + kNodeAddedMaxTimestampAt, last_timestamp);
+  put(out, after_name + kNodeAddedSeekTableAt, seek_at);
   return out;
 }
 
@@ -142,20 +114,18 @@ std::string keep_first_frames(const std::string& bytes, const std::vector<Record
 // padded to about twice its content) and any frames beyond `frames`. Returns the
 // frames the file holds; a file whose records do not parse is left alone.
 std::uint64_t finish_recording(const std::filesystem::path& path, std::uint64_t frames) {
-  const std::vector<Record> records = scan_file(path);
+  const Bytes bytes = read_file(path);
+  const std::vector<RecordHeader> records = walk_records(bytes).records;
   const std::uint64_t written = count(records, kNewData);
   if (records.empty() || records.back().type != kEnd) return written;
   if (written <= frames) {
-    std::filesystem::resize_file(path, records.back().end);
+    std::filesystem::resize_file(path, records.back().end());
     return written;
   }
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  in.close();
-  const std::string trimmed = keep_first_frames(bytes, records, frames);
+  const Bytes trimmed = keep_first_frames(bytes, records, frames);
   if (trimmed.empty()) return written;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(trimmed.data(), static_cast<std::streamsize>(trimmed.size()));
+  out.write(reinterpret_cast<const char*>(trimmed.data()), static_cast<std::streamsize>(trimmed.size()));
   out.close();
   if (!out) throw Error("cannot write " + path.string());
   return frames;
