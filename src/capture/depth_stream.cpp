@@ -1,8 +1,10 @@
 #include "depth_stream.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <thread>
 
 #include <spdlog/spdlog.h>
 
@@ -53,6 +55,13 @@ std::optional<std::string> depth_frame_problem(const DepthFrameLayout& f) {
 
 DepthStream::~DepthStream() {
   if (started_) stream_.stop();
+  // OpenNI2's file player thread walks its stream list without a lock, and
+  // destroying a stream deletes it from that list without one (PlayerDevice::
+  // MainLoop and destroyStream, Source/Drivers/OniFile/PlayerDevice.cpp): seen
+  // as a SIGSEGV in libOniFile about once in 20 closes on a loaded machine.
+  // A stopped stream sends that thread into 10 ms sleeps between walks; give
+  // it two of them to get there before the stream goes.
+  if (started_ && device_.isValid() && device_.isFile()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   if (stream_.isValid()) stream_.destroy();
   if (device_.isValid()) device_.close();
   if (listening_) openni::OpenNI::removeDeviceDisconnectedListener(this);
