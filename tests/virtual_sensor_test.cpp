@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "codec_tail.hpp"
 #include "test_files.hpp"
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/io/cloud_io.hpp"
@@ -29,6 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using test::differing_pixels_but_codec_tail;
 
 const fs::path kData = LCCP_TEST_DATA_DIR;
 constexpr const char* kSyntheticUri = "virtual://synthetic";
@@ -91,25 +93,6 @@ std::size_t differing_pixels(const std::vector<std::uint16_t>& a, const std::vec
   if (a.size() != b.size()) return std::max(a.size(), b.size());
   std::size_t count = 0;
   for (std::size_t i = 0; i < a.size(); ++i) count += a[i] != b[i];
-  return count;
-}
-
-// Pixels of a replayed frame that differ from the depth that was recorded, except
-// those OpenNI2's 16zT codec is known to change. Its encoder
-// (XnStreamCompressDepth16ZWithEmbTable, OpenNI2 Source/Core/XnStreamCompression.cpp)
-// ends a frame by writing a pending single step before a pending run of unchanged
-// pixel pairs (at most 14 pairs), so the decoder gives that run the last pixel's value:
-// up to 28 pixels before the last one may come back equal to the last pixel.
-std::size_t differing_pixels_but_codec_tail(const std::vector<std::uint16_t>& replayed,
-                                            const std::vector<std::uint16_t>& recorded) {
-  constexpr std::size_t kCodecTail = 2 * 14 + 1;
-  if (replayed.size() != recorded.size() || replayed.empty()) return std::max(replayed.size(), recorded.size());
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < replayed.size(); ++i) {
-    const bool codec_tail = i + kCodecTail >= replayed.size() && i + 1 < replayed.size() &&
-                            replayed[i] == replayed.back();
-    count += replayed[i] != recorded[i] && !codec_tail;
-  }
   return count;
 }
 
