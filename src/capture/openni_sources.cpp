@@ -116,13 +116,15 @@ class DeviceSource final : public FrameSource {
         std::chrono::duration<double>(Clock::now() - started_).count() >= *options_.max_seconds) {
       return std::nullopt;
     }
-    std::optional<Frame> frame = stream_.wait_and_read(options_.stall_timeout_ms, stop_);
+    const int timeout_ms = delivered_ == 0 ? std::max(options_.stall_timeout_ms, options_.first_frame_timeout_ms)
+                                           : options_.stall_timeout_ms;
+    std::optional<Frame> frame = stream_.wait_and_read(timeout_ms, stop_);
     if (!frame) {
       if (stop_.load()) return std::nullopt;
       const std::string after = " after " + std::to_string(delivered_) + " frames";
       if (stream_.lost()) throw Error("device " + stream_.uri() + " disconnected" + after);
       throw Error("device " + stream_.uri() + " stopped sending frames" + after + " (no frame for " +
-                  std::to_string(options_.stall_timeout_ms) + " ms)");
+                  std::to_string(timeout_ms) + " ms)");
     }
     frame->captured = Clock::now();
     ++delivered_;

@@ -135,10 +135,6 @@ std::uint64_t finish_recording(const std::filesystem::path& path, std::uint64_t 
 
 // How long the recorder may lag behind the frames we have read before we give up.
 constexpr auto kRecorderCatchUp = std::chrono::seconds(10);
-// The wait for the first frame, if longer than the stall timeout: a device may take a
-// while to deliver it (measured: over 2 s for the virtual sensor in a sanitizer build
-// on a loaded machine, where the stall timeout alone made `record` fail at once).
-constexpr int kFirstFrameTimeoutMs = 20000;
 
 // Reads frames until the recorder has written `frames` of them, `stop` is set, the
 // device is lost or stalls, or the recorder lags kRecorderCatchUp behind. OpenNI2
@@ -147,11 +143,12 @@ constexpr int kFirstFrameTimeoutMs = 20000;
 // machine we may read a frame late or not at all, so the file is what we count.
 // Returns the frames read, counted by the sensor's frame index.
 std::uint64_t read_until_written(detail::DepthStream& stream, const std::filesystem::path& partial,
-                                 std::uint64_t frames, int stall_timeout_ms, const std::atomic<bool>& stop) {
+                                 std::uint64_t frames, const LiveOptions& options, const std::atomic<bool>& stop) {
   std::optional<std::uint64_t> first_index;
   std::optional<std::chrono::steady_clock::time_point> read_enough;
   std::uint64_t read = 0;
-  const int first_frame_timeout_ms = std::max(stall_timeout_ms, kFirstFrameTimeoutMs);
+  const int stall_timeout_ms = options.stall_timeout_ms;
+  const int first_frame_timeout_ms = std::max(stall_timeout_ms, options.first_frame_timeout_ms);
   while (std::optional<Frame> frame =
              stream.wait_and_read(first_index ? stall_timeout_ms : first_frame_timeout_ms, stop)) {
     if (!first_index) first_index = frame->index;
@@ -187,7 +184,7 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
     // The recorder starts on its own thread: a frame sent at once could miss it.
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     stream.start();
-    read = read_until_written(stream, partial, frames, options.stall_timeout_ms, stop);
+    read = read_until_written(stream, partial, frames, options, stop);
     recorder.stop();
     recorder.destroy();  // writes the seek table and the End record
   }

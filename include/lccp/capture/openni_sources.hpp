@@ -43,6 +43,9 @@ struct LiveOptions {
   std::optional<std::uint64_t> max_frames; // stop after this many frames
   std::optional<double> max_seconds;       // stop after this long
   int stall_timeout_ms = 2000;             // no frame for this long: the device is lost
+  int first_frame_timeout_ms = 20000;      // the wait for the first frame, if longer: a device
+                                           // may take a while to start (over 2 s for the virtual
+                                           // sensor under a sanitizer on a loaded machine)
 };
 
 // A live OpenNI2 depth stream. Frame::index is the sensor's frame index, so
