@@ -1,11 +1,12 @@
-// PLY reading. The format is Greg Turk's "The PLY Polygon File Format"
-// (paulbourke.net/dataformats/ply): a text header (`ply`, `format`, `comment`
-// / `obj_info`, `element NAME COUNT`, `property TYPE NAME`, `property list
-// COUNT_TYPE ITEM_TYPE NAME`, `end_header`), then the elements in header
-// order, each element's properties in order; ascii as whitespace-separated
-// numbers, binary as packed values in the stated byte order. The `vertex`
-// element is read, every other one (faces, with lists) is parsed and skipped,
-// except that a `camera` element's viewport gives an organized cloud's shape.
+// PLY reading and the labelled-PLY writer. The format is Greg Turk's "The PLY
+// Polygon File Format" (paulbourke.net/dataformats/ply): a text header
+// (`ply`, `format`, `comment` / `obj_info`, `element NAME COUNT`, `property
+// TYPE NAME`, `property list COUNT_TYPE ITEM_TYPE NAME`, `end_header`), then
+// the elements in header order, each element's properties in order; ascii as
+// whitespace-separated numbers, binary as packed values in the stated byte
+// order. The `vertex` element is read, every other one (faces, with lists) is
+// parsed and skipped, except that a `camera` element's viewport gives an
+// organized cloud's shape.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -331,7 +332,70 @@ void read_vertices(Reader& reader, const Element& vertex, std::uint64_t step, Re
   records.data = records.storage;
 }
 
+// ------------------------------------------------------------------ writing
+
+// PCL's PLYWriter (io/src/ply_io.cpp, generateHeader and writeBinary) with
+// its default use_camera = true writes every one of width x height points,
+// NaN ones included, then an empty `face` element ("vtk requires face entry
+// to load PLY") and a `camera` element whose viewportx/viewporty hold width
+// and height; PLYReader restores the organized shape from them. Without the
+// camera it would drop the NaN points and add a `range_grid` instead. These
+// are the camera's properties in PCL's order.
+constexpr const char* kCameraElement =
+    "element face 0\nelement camera 1\n"
+    "property float view_px\nproperty float view_py\nproperty float view_pz\n"
+    "property float x_axisx\nproperty float x_axisy\nproperty float x_axisz\n"
+    "property float y_axisx\nproperty float y_axisy\nproperty float y_axisz\n"
+    "property float z_axisx\nproperty float z_axisy\nproperty float z_axisz\n"
+    "property float focal\nproperty float scalex\nproperty float scaley\n"
+    "property float centerx\nproperty float centery\n"
+    "property int viewportx\nproperty int viewporty\nproperty float k1\nproperty float k2\n";
+
+std::string labelled_ply_header(const PointCloud& cloud) {
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment LCCP Stream labelled cloud\nelement vertex " +
+                       std::to_string(cloud.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (cloud.has_colors()) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  return header + "property uint label\n" + kCameraElement + "end_header\n";
+}
+
+void put_le32(std::vector<std::uint8_t>& out, std::uint32_t value) {
+  for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<std::uint8_t>(value >> shift));
+}
+
+void put_float(std::vector<std::uint8_t>& out, float value) { put_le32(out, std::bit_cast<std::uint32_t>(value)); }
+
+// The camera record as PLYWriter::writeBinary fills it for the default
+// origin and orientation: position 0, axes the identity matrix (row by row),
+// focal, scale and centre 0, the viewport, k1 = k2 = 0.
+void put_camera(std::vector<std::uint8_t>& out, const PointCloud& cloud) {
+  for (int k = 0; k < 3; ++k) put_float(out, 0.0f);
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) put_float(out, row == col ? 1.0f : 0.0f);
+  for (int k = 0; k < 5; ++k) put_float(out, 0.0f);
+  put_le32(out, cloud.width);
+  put_le32(out, cloud.height);
+  for (int k = 0; k < 2; ++k) put_float(out, 0.0f);
+}
+
 }  // namespace
+
+std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Labels& labels) {
+  check_labelled_cloud(cloud, labels);
+  constexpr std::uint32_t kMaxInt = 0x7FFFFFFF;
+  if (cloud.width > kMaxInt || cloud.height > kMaxInt)
+    throw Error("width or height beyond 2^31 - 1 (a PLY camera viewport is an int)");
+  const std::string header = labelled_ply_header(cloud);
+  std::vector<std::uint8_t> out(header.begin(), header.end());
+  out.reserve(header.size() + (cloud.has_colors() ? 19 : 16) * cloud.size() + 21 * 4);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    for (int k = 0; k < 3; ++k) put_float(out, cloud.points[i][k]);
+    if (cloud.has_colors())
+      for (int shift = 16; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(cloud.colors[i] >> shift));
+    put_le32(out, labels[i]);
+  }
+  put_camera(out, cloud);
+  return out;
+}
 
 LabelledCloud parse_ply(std::span<const std::uint8_t> bytes, std::string_view name, const ReadLimits& limits) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());

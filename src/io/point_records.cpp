@@ -1,4 +1,5 @@
-// Point records to LabelledCloud, and text numbers, shared by the PCD and PLY readers.
+// Point records to LabelledCloud, and text numbers, shared by the PCD and PLY
+// readers; the labelled-cloud check shared by the writers.
 #include "point_records.hpp"
 
 #include <algorithm>
@@ -188,6 +189,13 @@ std::string one_line(std::string_view text) {
 
 std::string truncated(std::uint64_t have, std::uint64_t need, const char* unit) {
   return "truncated data (" + std::to_string(have) + " of " + std::to_string(need) + " " + unit + ")";
+}
+
+void check_labelled_cloud(const PointCloud& cloud, const Labels& labels) {
+  if (labels.size() != cloud.size()) throw Error("labels and points differ in number");
+  if (std::uint64_t{cloud.width} * cloud.height != cloud.size()) throw Error("width x height != number of points");
+  if (cloud.has_colors() && cloud.colors.size() != cloud.size()) throw Error("colours and points differ in number");
+  if (cloud.size() == 0) throw Error("no points to write");
 }
 
 }  // namespace lccp::io_detail

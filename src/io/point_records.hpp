@@ -1,6 +1,7 @@
 #pragma once
 // Internal to src/io: fixed-size point records as the PCD and PLY readers
-// decode them, and their conversion into a LabelledCloud by field name.
+// decode them, their conversion into a LabelledCloud by field name, and the
+// input check the labelled-cloud writers share.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -66,5 +67,9 @@ std::string one_line(std::string_view text);
 
 // "truncated data (HAVE of NEED UNIT)"
 std::string truncated(std::uint64_t have, std::uint64_t need, const char* unit);
+
+// Throws lccp::Error (one line, no path) if the labels, colours or width x
+// height do not match the points, or there are none.
+void check_labelled_cloud(const PointCloud& cloud, const Labels& labels);
 
 }  // namespace lccp::io_detail

@@ -1,5 +1,5 @@
 #pragma once
-// Reading clouds (PCD, PLY) and writing labelled outputs (PCD, PNG). The
+// Reading clouds (PCD, PLY) and writing labelled outputs (PCD, PLY, PNG). The
 // readers are our own (no PCL): every size in a file is checked against the
 // file's length and against ReadLimits before anything is allocated.
 #include <array>
@@ -45,20 +45,60 @@ LabelledCloud read_cloud(const std::filesystem::path& path, const ReadLimits& li
 LabelledCloud parse_pcd(std::span<const std::uint8_t> bytes, std::string_view name, const ReadLimits& limits = {});
 LabelledCloud parse_ply(std::span<const std::uint8_t> bytes, std::string_view name, const ReadLimits& limits = {});
 
-// A binary PCD of x y z [rgb] label (the header PCL's PCDWriter::writeBinary
-// writes for these fields), organized layout kept. Throws lccp::Error if the
-// labels, colours or width x height do not match the points, or there are none.
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels);
+// How a labelled PCD stores its points (PCD v0.7 DATA kinds, as PCL's
+// PCDWriter writes them): `binary` one point after another (writeBinary),
+// `binary_compressed` one LZF-compressed array per field (writeBinaryCompressed).
+enum class PcdEncoding { binary, binary_compressed };
 
-// A width x height 8-bit RGB PNG: label_color per label, black for label 0.
+// A PCD of x y z [rgb] label (float metres; rgb the float holding 0xFFRRGGBB,
+// as PCL's PointXYZRGB; uint32 label), organized layout kept, with the header
+// PCL's PCDWriter writes for these fields. `binary` output is what this
+// function wrote before it had an encoding; it is the default so that
+// existing callers keep their bytes. Throws lccp::Error if the labels,
+// colours or width x height do not match the points, or there are none, or
+// (binary_compressed) the data exceeds PCL's limit of 2863311530 bytes
+// (its two uint32 sizes must hold 3/2 of it).
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels,
+                                              PcdEncoding encoding = PcdEncoding::binary);
+
+// A binary_little_endian 1.0 PLY: one `vertex` element of x y z (float,
+// metres; NaN points written as NaN, so there is a vertex per point), red
+// green blue (uchar, if the cloud has colours) and label (uint), then PCL's
+// PLYWriter `face` (empty) and `camera` elements, whose viewportx/viewporty
+// keep width and height. Throws lccp::Error as encode_labelled_pcd, or if
+// width or height exceed 2^31 - 1 (the camera's int fields).
+std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Labels& labels);
+
+// encode_labelled_pcd or encode_labelled_ply by the extension of
+// `path_for_extension` (.pcd or .ply, any case); `encoding` applies to PCD.
+// Throws lccp::Error with one line "PATH: problem": "unknown output format
+// 'EXT' (use .pcd or .ply)" for any other extension, or an encoder's error.
+std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
+                                                const PointCloud& cloud, const Labels& labels,
+                                                PcdEncoding encoding = PcdEncoding::binary_compressed);
+
+// What a label image shows. labels: label_color per point (black for label
+// 0). overlay: the scene as a grey rendering of its surface (Lambert shading
+// with the light at the camera, normals from neighbouring pixels' points;
+// src/io/label_image.cpp), each labelled point's pixel blended half and half
+// with its label_color; label-0 points grey, NaN points black.
+enum class LabelImageStyle { labels, overlay };
+
+// A width x height 8-bit RGB PNG of the labels, one pixel per point.
 // Throws lccp::Error for an unorganized cloud or mismatched labels.
-std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels);
+std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels,
+                                           LabelImageStyle style = LabelImageStyle::labels);
 
-// encode_labelled_pcd / encode_label_png written with write_file_atomically
+// The encoders above written with write_file_atomically
 // (lccp/io/atomic_file.hpp): the file appears only when complete. Errors
 // name the path.
-void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels);
-void write_label_png(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels);
+void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                        PcdEncoding encoding = PcdEncoding::binary);
+void write_labelled_ply(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels);
+void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                          PcdEncoding encoding = PcdEncoding::binary_compressed);
+void write_label_png(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                     LabelImageStyle style = LabelImageStyle::labels);
 
 // The colour of a label in label images: black for 0, otherwise a fixed,
 // well-spread colour per label.
