@@ -1,4 +1,4 @@
-# A private OpenNI2 driver folder in the build tree (GUIDE section 4).
+# A private OpenNI2 driver folder in the build tree.
 # OpenNI2 loads its drivers from <folder of the loaded libOpenNI2.so.0>/OpenNI2/Drivers,
 # so build/lib holds a link to the system libOpenNI2.so.0, links to the stock file and
 # PS1080 drivers, and our virtual sensor. Executables find build/lib through an old-style

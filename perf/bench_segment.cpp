@@ -241,9 +241,7 @@ void run_case(benchmark::State& state, Case& c, const std::vector<Frame>& frames
         time.total_ms = ms_since(start);
         benchmark::DoNotOptimize(r.labels.data());
         const lccp::StageTimes& t = r.times;
-        const double stages[] = {t.voxelize_ms,  t.normals_ms,  t.seeds_ms, t.growth_ms,
-                                 t.adjacency_ms, t.classify_ms, t.label_ms, t.filter_ms};
-        for (std::size_t i = 0; i < 8; ++i) sums[i] += stages[i];
+        for (std::size_t i = 0; i < lccp::kStageCount; ++i) sums[i] += t.ms[i];
         supervoxels += r.supervoxel_count;
         segments += r.segment_count;
       }
@@ -260,7 +258,7 @@ void run_case(benchmark::State& state, Case& c, const std::vector<Frame>& frames
   static constexpr const char* kPclNames[] = {"pcl_supervoxels_ms", "pcl_lccp_ms", "pcl_labels_ms",
                                               "pcl_convert_ms"};
   static constexpr const char* kOurNames[] = {"voxelize_ms",  "normals_ms",  "seeds_ms", "growth_ms",
-                                              "adjacency_ms", "classify_ms", "label_ms", "filter_ms"};
+                                              "adjacency_ms", "classify_ms", "components_ms", "filter_ms"};
   for (std::size_t i = 0; i < sums.size(); ++i) state.counters[c.pcl ? kPclNames[i] : kOurNames[i]] = avg(sums[i]);
   state.counters["supervoxels"] = avg(supervoxels);
   state.counters["segments"] = avg(segments);

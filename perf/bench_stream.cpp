@@ -34,7 +34,7 @@
 
 #include "lccp/process.hpp"
 
-#include "lccp/capture/frame_source.hpp"
+#include "lccp/frame_source.hpp"
 #include "lccp/capture/openni_sources.hpp"
 #include "lccp/config.hpp"
 #include "lccp/core/back_projection.hpp"
@@ -73,8 +73,8 @@ class MemorySource final : public lccp::FrameSource {
   MemorySource(const std::vector<lccp::DepthImage>& images, std::uint64_t count, std::optional<double> fps)
       : images_(images), count_(count), fps_(fps) {}
 
-  std::optional<lccp::Frame> next() override {
-    if (stop_.load() || delivered_ >= count_) return std::nullopt;
+  std::optional<lccp::Frame> next(std::stop_token stop) override {
+    if (stop.stop_requested() || delivered_ >= count_) return std::nullopt;
     lccp::Frame frame;
     frame.index = delivered_;
     frame.timestamp_us = fps_ ? static_cast<std::uint64_t>(std::llround(1e6 * static_cast<double>(delivered_) / *fps_)) : 0;
@@ -84,10 +84,7 @@ class MemorySource final : public lccp::FrameSource {
       const auto release =
           start_ + std::chrono::duration_cast<Clock::duration>(
                        std::chrono::duration<double>(static_cast<double>(delivered_) / *fps_));
-      while (Clock::now() < release) {  // short slices, so that request_stop() is honoured soon
-        if (stop_.load()) return std::nullopt;
-        std::this_thread::sleep_until(std::min(release, Clock::now() + std::chrono::milliseconds(20)));
-      }
+      std::this_thread::sleep_until(release);  // the benchmark never stops a run early
       frame.captured = release;  // a sensor's frame exists from this instant, whenever we read it
     } else {
       frame.captured = Clock::now();
@@ -98,7 +95,6 @@ class MemorySource final : public lccp::FrameSource {
 
   std::optional<std::uint64_t> frame_count() const override { return count_; }
   bool is_live() const override { return fps_.has_value(); }
-  void request_stop() override { stop_.store(true); }
 
  private:
   const std::vector<lccp::DepthImage>& images_;
@@ -106,7 +102,6 @@ class MemorySource final : public lccp::FrameSource {
   std::optional<double> fps_;
   std::uint64_t delivered_ = 0;
   Clock::time_point start_{};
-  std::atomic<bool> stop_{false};
 };
 
 // ---------------------------------------------------------------------------------------
@@ -145,7 +140,7 @@ struct StageMedians {
   // for a slot (paced: in the admission gate) or between stages.
   static constexpr std::size_t kCount = 11;
   static constexpr const char* kNames[kCount] = {"back_projection", "voxelize", "normals", "seeds",   "growth",
-                                                 "adjacency",       "classify", "label",   "filter",  "segment",
+                                                 "adjacency",       "classify", "components", "filter", "segment",
                                                  "waiting"};
   double ms[kCount] = {};
 };
@@ -177,7 +172,7 @@ RunResult run_pipeline(const lccp::LccpSegmenter& segmenter, const std::vector<l
                        Mode mode, unsigned threads, unsigned inflight, std::uint64_t frames, double fps) {
   lccp::PipelineConfig config;
   config.frames_in_flight = inflight;
-  config.drop_policy = mode == Mode::paced ? lccp::DropPolicy::drop_oldest : lccp::DropPolicy::block;
+  // A paced source is live (MemorySource::is_live): the pipeline drops the oldest.
   lccp::Pipeline pipeline(segmenter, config);
   MemorySource source(images, frames, mode == Mode::paced ? std::optional<double>(fps) : std::nullopt);
 
@@ -193,13 +188,14 @@ RunResult run_pipeline(const lccp::LccpSegmenter& segmenter, const std::vector<l
     const lccp::StageTimes& t = r.segmentation.times;
     FrameRecord record;
     record.end_to_end_ms = r.end_to_end_ms();
-    const double stages[StageMedians::kCount] = {r.back_projection_ms, t.voxelize_ms, t.normals_ms, t.seeds_ms,
-                                                 t.growth_ms,          t.adjacency_ms, t.classify_ms, t.label_ms,
-                                                 t.filter_ms,          t.total_ms(),
-                                                 record.end_to_end_ms - r.back_projection_ms - t.total_ms()};
-    std::copy(std::begin(stages), std::end(stages), std::begin(record.stages_ms));
+    // back_projection, the stages of lccp::kStages, segment, waiting (StageMedians::kNames)
+    static_assert(StageMedians::kCount == lccp::kStageCount + 3);
+    record.stages_ms[0] = r.back_projection_ms;
+    std::copy(t.ms.begin(), t.ms.end(), record.stages_ms + 1);
+    record.stages_ms[lccp::kStageCount + 1] = t.total_ms();
+    record.stages_ms[lccp::kStageCount + 2] = record.end_to_end_ms - r.back_projection_ms - t.total_ms();
     records.push_back(record);
-  });
+  }).stats;
   const double cpu = cpu_seconds() - cpu_start;
 
   RunResult result;

@@ -1,7 +1,7 @@
 // mosd_accuracy: object segmentation scores on the mOSD test scenes (test0..test64),
 // LccpSegmenter and PCL 1.13's LCCP with the same config, scored the same way.
 //
-// Scoring (GUIDE section 3): lccp::score_segmentation over finite points only, ground-truth
+// Scoring (paper Appendix B, as `lccp eval --ignore 0-9`): lccp::score_segmentation over finite points only, ground-truth
 // labels 0-9 (the table) ignored, with two ground truths:
 //   raw    - the file's labels; disjoint parts of one object (50, 51) are separate regions
 //   merged - object parts merged: every label >= 20 becomes label / 10 * 10 (50, 51 -> 50)

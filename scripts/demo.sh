@@ -8,4 +8,5 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh -DLCCP_BUILD_TESTS=OFF -DLCCP_BUILD_PERF=OFF
 ./build/lccp replay recordings/mosd_scenes.oni --config config/p1.yaml -o out/replay --save pcd,png --quiet
-echo "demo: wrote out/replay/frame_*.pcd, out/replay/frame_*.png and out/replay/summary.json"
+echo "demo: wrote out/replay/frame_*.pcd (labelled clouds, binary_compressed), out/replay/frame_*.png (label images)"
+echo "      and out/replay/summary.json; the program is ./build/lccp (see README: Use)"

@@ -11,9 +11,12 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <stop_token>
+#include <thread>
 #include <vector>
 
 #include "lccp/capture/cloud_files.hpp"
+#include "lccp/capture/open_source.hpp"
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/capture/openni_sources.hpp"
 #include "lccp/core/back_projection.hpp"
@@ -26,6 +29,19 @@
 
 namespace lccp {
 namespace {
+
+SourceLimits frames_limit(std::uint64_t frames) {
+  SourceLimits limits;
+  limits.max_frames = frames;
+  return limits;
+}
+
+SourceLimits seconds_limit(double seconds) {
+  SourceLimits limits;
+  limits.max_seconds = seconds;
+  return limits;
+}
+
 
 namespace fs = std::filesystem;
 
@@ -123,8 +139,7 @@ class RecordingTest : public ::testing::Test {
     fs::create_directories(*directory_);
     LiveOptions options;
     options.uri = "virtual://synthetic";
-    const std::atomic<bool> never{false};
-    stats_ = record_device(options, recording(), kRecordedFrames, never);
+    stats_ = record_device(options, recording(), kRecordedFrames);
   }
   static void TearDownTestSuite() {
     std::error_code ignored;
@@ -154,7 +169,7 @@ TEST_F(RecordingTest, ReplayDeliversEveryFrameInOrderWithTheSensorsDepth) {
   const synthetic::TabletopScene scene;
   std::uint64_t frames = 0;
   std::uint64_t previous_timestamp = 0;
-  while (std::optional<Frame> frame = source->next()) {
+  while (std::optional<Frame> frame = source->next({})) {
     EXPECT_EQ(frame->index, frames);
     if (frames > 0) {
       EXPECT_GT(frame->timestamp_us, previous_timestamp);
@@ -172,32 +187,52 @@ TEST_F(RecordingTest, ReplayDeliversEveryFrameInOrderWithTheSensorsDepth) {
     ++frames;
   }
   EXPECT_EQ(frames, kRecordedFrames);
-  EXPECT_FALSE(source->next().has_value()) << "a frame after the end";
+  EXPECT_FALSE(source->next({}).has_value()) << "a frame after the end";
 }
 
 TEST_F(RecordingTest, FrameLimitAndStopEndTheReplay) {
-  ReplayOptions options;
-  options.max_frames = 4;
-  const auto limited = open_recording(recording(), options);
+  const auto limited = limit_source(open_recording(recording()), frames_limit(4));
   EXPECT_EQ(limited->frame_count(), 4u);
   int frames = 0;
-  while (limited->next()) ++frames;
+  while (limited->next({})) ++frames;
   EXPECT_EQ(frames, 4);
 
   const auto stopped = open_recording(recording());
-  ASSERT_TRUE(stopped->next().has_value());
-  stopped->request_stop();
-  EXPECT_FALSE(stopped->next().has_value());
+  std::stop_source stop;
+  ASSERT_TRUE(stopped->next(stop.get_token()).has_value());
+  stop.request_stop();
+  EXPECT_FALSE(stopped->next(stop.get_token()).has_value());
+}
+
+TEST_F(RecordingTest, LimitsOfZeroAreRefused) {
+  expect_lccp_error([&] { limit_source(open_recording(recording()), frames_limit(0)); }, {"at least 1"});
+  expect_lccp_error([&] { limit_source(open_recording(recording()), seconds_limit(0.0)); }, {"more than 0"});
+}
+
+TEST_F(RecordingTest, StopWakesARealtimeReplayWaitingForItsNextFrame) {
+  // Paced by its timestamps, the replay waits 33 ms between frames; the stop
+  // comes from another thread while it waits and ends next() at once.
+  ReplayOptions options;
+  options.realtime = true;
+  const auto source = open_recording(recording(), options);
+  std::stop_source stop;
+  std::uint64_t frames = 0;
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    stop.request_stop();
+  });
+  while (source->next(stop.get_token())) ++frames;
+  stopper.join();
+  EXPECT_LT(frames, kRecordedFrames);  // ended by the stop, not by the end of the file
 }
 
 TEST_F(RecordingTest, RealtimeReplayKeepsTheRecordingsPace) {
   ReplayOptions options;
   options.realtime = true;
-  options.max_frames = 7;
-  const auto source = open_recording(recording(), options);
+  const auto source = limit_source(open_recording(recording(), options), frames_limit(7));
   EXPECT_TRUE(source->is_live());
   const auto start = std::chrono::steady_clock::now();
-  while (source->next()) {
+  while (source->next({})) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(seconds, 6 / 30.0 - 0.01);  // 6 frame periods after the first frame
@@ -213,7 +248,7 @@ TEST_F(RecordingTest, TruncatedRecordingFailsWithinTheStallTimeout) {
     ReplayOptions options;
     options.stall_timeout_ms = 1000;
     const auto source = open_recording(truncated, options);
-    while (source->next()) {
+    while (source->next({})) {
     }
     ADD_FAILURE() << "a truncated recording replayed to the end";
   } catch (const Error& e) {
@@ -233,12 +268,11 @@ TEST(Recording, MissingOrWrongFilesAreNamed) {
 TEST(LiveDevice, VirtualSensorStreamsAtThirtyHertz) {
   LiveOptions options;
   options.uri = "virtual://synthetic";
-  options.max_frames = 10;
-  const auto source = open_device(options);
+  const auto source = limit_source(open_device(options), frames_limit(10));
   EXPECT_TRUE(source->is_live());
   const auto start = std::chrono::steady_clock::now();
   int frames = 0;
-  while (std::optional<Frame> frame = source->next()) {
+  while (std::optional<Frame> frame = source->next({})) {
     ASSERT_TRUE(frame->depth.has_value());
     EXPECT_EQ(frame->depth->width, 640u);
     ++frames;
@@ -257,7 +291,7 @@ TEST(LiveDevice, DisappearingDeviceIsAnErrorNamingIt) {
   const auto start = std::chrono::steady_clock::now();
   expect_lccp_error(
       [&] {
-        while (source->next()) ++frames;
+        while (source->next({})) ++frames;
       },
       {"virtual://synthetic", "disconnected", "after 5 frames"});
   EXPECT_EQ(frames, 5);
@@ -352,7 +386,7 @@ TEST(CloudFiles, DirectoryGivesItsCloudsSortedByName) {
   const auto source = open_cloud_files({kData});
   ASSERT_EQ(source->frame_count(), 4u);
   std::vector<std::string> names;
-  while (std::optional<Frame> frame = source->next()) {
+  while (std::optional<Frame> frame = source->next({})) {
     EXPECT_EQ(frame->index, names.size());
     EXPECT_FALSE(frame->depth.has_value());
     EXPECT_GT(frame->cloud.size(), 100000u);

@@ -109,15 +109,18 @@ inline void expect_error(const RunResult& r, std::initializer_list<std::string> 
   }
 }
 
-// A CLI11 usage error: a normal non-zero exit (not 1, which is lccp::Error; not
-// a timeout or a shell-style signal code) with a message on stderr.
-inline void expect_usage_error(const RunResult& r) {
+// A usage error: exit 2, nothing on stdout, exactly one stderr line
+// "lccp: error: ..." containing every phrase.
+inline void expect_usage_error(const RunResult& r, std::initializer_list<std::string> phrases = {}) {
   SCOPED_TRACE(describe(r));
   EXPECT_EQ(r.signal, 0) << "killed by a signal";
-  EXPECT_GT(r.exit_code, 1);
-  EXPECT_LT(r.exit_code, 124);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "");
-  EXPECT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.rfind("lccp: error: ", 0), 0u) << "stderr does not start with 'lccp: error: '";
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr is not exactly one line";
+  for (const std::string& phrase : phrases) {
+    EXPECT_NE(r.err.find(phrase), std::string::npos) << "stderr does not mention '" << phrase << "'";
+  }
 }
 
 inline void expect_success(const RunResult& r) {

@@ -56,8 +56,7 @@ TEST(FrameAdmission, BlockingGateKeepsAtMostKFramesAndLosesNone) {
   constexpr unsigned kSlots = 2;
   constexpr std::uint64_t kFrames = 2000;
   FakeGraph graph;
-  detail::FrameAdmission admission(kSlots, [] { return false; },
-                                   [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
+  detail::FrameAdmission admission(kSlots, [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
   std::atomic<bool> capture_done{false};
   std::thread capture([&] {
     for (std::uint64_t i = 0; i < kFrames; ++i) ASSERT_TRUE(admission.enter_when_free(frame_with_index(i)));
@@ -88,8 +87,7 @@ TEST(FrameAdmission, DropOldestLetsTheNewestInAndCountsEveryDrop) {
   constexpr unsigned kSlots = 1;
   constexpr std::uint64_t kFrames = 3000;
   FakeGraph graph;
-  detail::FrameAdmission admission(kSlots, [] { return false; },
-                                   [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
+  detail::FrameAdmission admission(kSlots, [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
   std::atomic<bool> capture_done{false};
   std::thread capture([&] {  // a sensor that never waits
     for (std::uint64_t i = 0; i < kFrames; ++i) admission.enter_or_wait(frame_with_index(i));
@@ -122,16 +120,26 @@ TEST(FrameAdmission, DropOldestLetsTheNewestInAndCountsEveryDrop) {
   EXPECT_LE(graph.max_in_flight(), static_cast<int>(kSlots));
 }
 
-TEST(FrameAdmission, AbortWakesABlockedCaptureThread) {
+TEST(FrameAdmission, CloseWakesABlockedCaptureThread) {
   FakeGraph graph;
-  detail::FrameAdmission admission(1, [] { return false; },
-                                   [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
+  detail::FrameAdmission admission(1, [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
   ASSERT_TRUE(admission.enter_when_free(frame_with_index(0)));
   std::atomic<bool> second_admitted{true};
   std::thread capture([&] { second_admitted.store(admission.enter_when_free(frame_with_index(1))); });
-  admission.abort();
+  admission.close();
   capture.join();
   EXPECT_FALSE(second_admitted.load());
+  EXPECT_EQ(graph.entered().size(), 1u);
+  EXPECT_EQ(admission.drop_waiting(), 1u);
+}
+
+TEST(FrameAdmission, AFrameWaitingUnderDropOldestStaysOutOnceClosed) {
+  FakeGraph graph;
+  detail::FrameAdmission admission(1, [&](Frame f, std::uint64_t sequence) { graph.enter(std::move(f), sequence); });
+  admission.enter_or_wait(frame_with_index(0));  // takes the one slot
+  admission.enter_or_wait(frame_with_index(1));  // waits
+  admission.close();
+  admission.release();  // the slot is free, but no frame enters after close()
   EXPECT_EQ(graph.entered().size(), 1u);
   EXPECT_EQ(admission.drop_waiting(), 1u);
 }

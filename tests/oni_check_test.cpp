@@ -91,13 +91,13 @@ TEST_F(OniCheckTest, OurDecoderGivesOpenNI2sPixelsOnEveryFrameOfBothRecordings) 
     ASSERT_EQ(source->frame_count(), frames.size());
     std::vector<std::uint16_t> ours(640 * 480);
     for (const OniRecord& frame : frames) {
-      const std::optional<Frame> theirs = source->next();
+      const std::optional<Frame> theirs = source->next({});
       ASSERT_TRUE(theirs && theirs->depth);
       const auto payload = as_bytes(*bytes).subspan(frame.offset + frame.fields_size, frame.payload_size);
       ASSERT_EQ(detail::decode_16zt(payload, ours), std::nullopt);
       EXPECT_EQ(ours, theirs->depth->depth_mm) << "frame " << theirs->index;
     }
-    EXPECT_FALSE(source->next().has_value());
+    EXPECT_FALSE(source->next({}).has_value());
   }
 }
 

@@ -1,8 +1,11 @@
 // The streaming pipeline: labels equal LccpSegmenter::segment for any number of
 // frames in flight and threads, frames reach the sink in order, depth frames are
 // back-projected, drop_oldest drops and counts, errors stay with their frame or
-// end run() after the frames in flight, and stop() ends an endless stream.
+// end run() after the frames in flight (returned, not thrown), the counts add
+// up, and a stop request ends an endless stream.
 #include <atomic>
+#include <condition_variable>
+#include <stop_token>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -23,7 +26,7 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
-#include "lccp/capture/frame_source.hpp"
+#include "lccp/frame_source.hpp"
 #include "lccp/core/back_projection.hpp"
 #include "lccp/core/lccp.hpp"
 #include "lccp/error.hpp"
@@ -107,8 +110,8 @@ class VectorSource : public FrameSource {
   explicit VectorSource(std::vector<Frame> frames, bool live = false, std::optional<std::size_t> throw_at = {})
       : frames_(std::move(frames)), live_(live), throw_at_(throw_at) {}
 
-  std::optional<Frame> next() override {
-    if (stop_.load()) return std::nullopt;
+  std::optional<Frame> next(std::stop_token stop) override {
+    if (stop.stop_requested()) return std::nullopt;
     if (throw_at_ && next_ == *throw_at_) throw Error("device lost");
     if (next_ == frames_.size()) return std::nullopt;
     Frame frame = frames_[next_++];
@@ -117,42 +120,40 @@ class VectorSource : public FrameSource {
   }
   std::optional<std::uint64_t> frame_count() const override { return frames_.size(); }
   bool is_live() const override { return live_; }
-  void request_stop() override { stop_.store(true); }
 
  private:
   std::vector<Frame> frames_;
   bool live_;
   std::optional<std::size_t> throw_at_;
   std::size_t next_ = 0;
-  std::atomic<bool> stop_{false};
 };
 
 // An endless stream of the small cloud, frame indices 0, 1, 2, ... After
-// `block_after` frames (if given), next() blocks until request_stop().
+// `block_after` frames (if given), next() blocks until a stop is requested.
 class EndlessSource : public FrameSource {
  public:
   explicit EndlessSource(bool live, std::optional<std::uint64_t> block_after = {})
       : live_(live), block_after_(block_after) {}
 
-  std::optional<Frame> next() override {
-    if (block_after_ && index_ == *block_after_) stop_.wait(false);
-    if (stop_.load()) return std::nullopt;
+  std::optional<Frame> next(std::stop_token stop) override {
+    if (block_after_ && index_ == *block_after_) {
+      std::mutex mutex;
+      std::condition_variable_any never_notified;
+      std::unique_lock lock(mutex);
+      never_notified.wait(lock, stop, [] { return false; });
+    }
+    if (stop.stop_requested()) return std::nullopt;
     Frame frame = cloud_frame(index_++, small_cloud());
     frame.captured = Clock::now();
     return frame;
   }
   std::optional<std::uint64_t> frame_count() const override { return std::nullopt; }
   bool is_live() const override { return live_; }
-  void request_stop() override {
-    stop_.store(true);
-    stop_.notify_all();
-  }
 
  private:
   bool live_;
   std::optional<std::uint64_t> block_after_;
   std::uint64_t index_ = 0;
-  std::atomic<bool> stop_{false};
 };
 
 // What the sink saw, in call order.
@@ -189,14 +190,14 @@ TEST_P(PipelineMatchesSegment, LabelsEqualSegmentAndFramesArriveInOrder) {
     frames.push_back(cloud_frame(i, scene(name), name));
   }
   VectorSource source(std::move(frames));
-  Pipeline pipeline(segmenter(), PipelineConfig{frames_in_flight, DropPolicy::block});
+  Pipeline pipeline(segmenter(), PipelineConfig{frames_in_flight});
 
   Delivered seen;
   const PipelineStats stats = with_threads(threads, [&] {
     return pipeline.run(source, [&](FrameResult& result) {
       seen.indices.push_back(result.frame.index);
       seen.results.push_back(std::move(result));
-    });
+    }).stats;
   });
 
   EXPECT_EQ(stats.frames_received, frame_count);
@@ -213,9 +214,9 @@ TEST_P(PipelineMatchesSegment, LabelsEqualSegmentAndFramesArriveInOrder) {
     EXPECT_EQ(r.frame.cloud.size(), scene(name).size());
     EXPECT_TRUE(r.segmentation.labels == reference_labels(name)) << name;
     EXPECT_GT(r.segmentation.segment_count, 1u);
-    EXPECT_GT(r.segmentation.times.voxelize_ms, 0.0);
-    EXPECT_GT(r.segmentation.times.growth_ms, 0.0);
-    EXPECT_GT(r.segmentation.times.filter_ms, 0.0);
+    EXPECT_GT(r.segmentation.times[Stage::voxelize], 0.0);
+    EXPECT_GT(r.segmentation.times[Stage::growth], 0.0);
+    EXPECT_GT(r.segmentation.times[Stage::filter], 0.0);
     EXPECT_EQ(r.back_projection_ms, 0.0);  // a cloud frame is not back-projected
     EXPECT_GE(r.end_to_end_ms(), r.segmentation.times.total_ms() * 0.999);
   }
@@ -243,9 +244,9 @@ TEST(PipelineDepth, DepthFramesAreBackProjectedThenSegmented) {
   for (const Frame& frame : frames) expected.push_back(segmenter().segment(back_project(*frame.depth)).labels);
 
   VectorSource source(std::move(frames));
-  Pipeline pipeline(segmenter(), PipelineConfig{2, DropPolicy::block});
+  Pipeline pipeline(segmenter(), PipelineConfig{2});
   std::vector<FrameResult> seen;
-  const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) { seen.push_back(std::move(r)); });
+  const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) { seen.push_back(std::move(r)); }).stats;
 
   EXPECT_EQ(stats.frames_completed, names.size());
   ASSERT_EQ(seen.size(), names.size());
@@ -280,7 +281,7 @@ TEST(PipelineDropOldest, DropsAreCountedAndFramesStayInOrder) {
     frames.push_back(cloud_frame(index++, small_cloud()));
   }
   VectorSource source(std::move(frames), /*live=*/true);
-  Pipeline pipeline(segmenter(), PipelineConfig{2, DropPolicy::drop_oldest});
+  Pipeline pipeline(segmenter(), PipelineConfig{2});
 
   Delivered seen;
   const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) {
@@ -288,13 +289,16 @@ TEST(PipelineDropOldest, DropsAreCountedAndFramesStayInOrder) {
     EXPECT_TRUE(r.error.empty()) << r.error;
     EXPECT_TRUE(r.segmentation.labels == small_reference());
     std::this_thread::sleep_for(std::chrono::milliseconds(20));  // a slow consumer, not synchronization
-  });
+  }).stats;
 
   EXPECT_EQ(stats.frames_received, kFrames);
   EXPECT_EQ(stats.frames_completed, seen.indices.size());
   EXPECT_GE(stats.frames_completed, 1u);
   EXPECT_LT(stats.frames_completed, kFrames);
+  EXPECT_EQ(stats.sensor_gaps, gaps);
+  EXPECT_EQ(stats.frames_failed, 0u);
   EXPECT_EQ(stats.frames_received - stats.frames_completed + gaps, stats.frames_dropped);
+  EXPECT_TRUE(stats.adds_up());
   EXPECT_TRUE(strictly_increasing(seen.indices));
   // The newest frame always gets through: the last one is never dropped.
   EXPECT_EQ(seen.indices.back(), kFrames - 1 + gaps);
@@ -304,10 +308,12 @@ TEST(PipelineBlock, IndexGapsAreCountedAsDrops) {
   std::vector<Frame> frames;
   for (std::uint64_t index : {5, 6, 9, 10, 14}) frames.push_back(cloud_frame(index, small_cloud()));
   VectorSource source(std::move(frames));
-  Pipeline pipeline(segmenter(), PipelineConfig{2, DropPolicy::block});
+  Pipeline pipeline(segmenter(), PipelineConfig{2});
   std::vector<std::uint64_t> seen;
-  const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) { seen.push_back(r.frame.index); });
+  const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) { seen.push_back(r.frame.index); }).stats;
   EXPECT_EQ(seen, (std::vector<std::uint64_t>{5, 6, 9, 10, 14}));
+  EXPECT_EQ(stats.sensor_gaps, 5u);
+  EXPECT_TRUE(stats.adds_up());
   EXPECT_EQ(stats.frames_received, 5u);
   EXPECT_EQ(stats.frames_completed, 5u);
   EXPECT_EQ(stats.frames_dropped, 2u + 3u);  // 7-8 and 11-13 never arrived; nothing before the first frame
@@ -315,22 +321,21 @@ TEST(PipelineBlock, IndexGapsAreCountedAsDrops) {
 
 // --- errors ------------------------------------------------------------------------------
 
-TEST(PipelineSourceError, FramesInFlightReachTheSinkThenRunRethrows) {
+TEST(PipelineSourceError, FramesInFlightReachTheSinkThenRunReturnsTheError) {
   for (const DropPolicy policy : {DropPolicy::block, DropPolicy::drop_oldest}) {
     std::vector<Frame> frames;
     for (std::uint64_t i = 0; i < 6; ++i) frames.push_back(cloud_frame(i, small_cloud()));
     VectorSource source(std::move(frames), policy == DropPolicy::drop_oldest, /*throw_at=*/3);
-    Pipeline pipeline(segmenter(), PipelineConfig{2, policy});
+    Pipeline pipeline(segmenter(), PipelineConfig{2});
     std::vector<std::uint64_t> seen;
-    try {
-      pipeline.run(source, [&](FrameResult& r) {
-        EXPECT_TRUE(r.segmentation.labels == small_reference());
-        seen.push_back(r.frame.index);
-      });
-      ADD_FAILURE() << "run() did not rethrow the source's error";
-    } catch (const Error& e) {
-      EXPECT_STREQ(e.what(), "device lost");
-    }
+    const PipelineOutcome outcome = pipeline.run(source, [&](FrameResult& r) {
+      EXPECT_TRUE(r.segmentation.labels == small_reference());
+      seen.push_back(r.frame.index);
+    });
+    EXPECT_EQ(outcome.error, "device lost");
+    EXPECT_EQ(outcome.stats.frames_received, 3u);
+    EXPECT_EQ(outcome.stats.frames_completed, seen.size());
+    EXPECT_TRUE(outcome.stats.adds_up());
     if (policy == DropPolicy::block) {
       EXPECT_EQ(seen, (std::vector<std::uint64_t>{0, 1, 2}));
     } else {  // frames may have been dropped, but the last one before the error got through
@@ -357,11 +362,13 @@ TEST(PipelineStageError, FailedFrameReachesTheSinkAndTheStreamGoesOn) {
   frames.push_back(std::move(bad_depth));
   frames.push_back(cloud_frame(4, small_cloud()));
   VectorSource source(std::move(frames));
-  Pipeline pipeline(segmenter(), PipelineConfig{3, DropPolicy::block});
+  Pipeline pipeline(segmenter(), PipelineConfig{3});
   std::vector<FrameResult> seen;
-  const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) { seen.push_back(std::move(r)); });
+  const PipelineStats stats = pipeline.run(source, [&](FrameResult& r) { seen.push_back(std::move(r)); }).stats;
 
-  EXPECT_EQ(stats.frames_completed, 5u);
+  EXPECT_EQ(stats.frames_completed, 3u);
+  EXPECT_EQ(stats.frames_failed, 2u);
+  EXPECT_TRUE(stats.adds_up());
   ASSERT_EQ(seen.size(), 5u);
   for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i].frame.index, i);
   for (std::size_t i : {0, 2, 4}) {
@@ -375,30 +382,32 @@ TEST(PipelineStageError, FailedFrameReachesTheSinkAndTheStreamGoesOn) {
   EXPECT_TRUE(seen[3].segmentation.labels.empty());  // no cloud: no points to label
 }
 
-TEST(PipelineSinkError, NoMoreFramesAreTakenAndRunRethrows) {
+TEST(PipelineSinkError, NoMoreFramesAreTakenAndRunReturnsTheError) {
   EndlessSource source(/*live=*/false);
-  Pipeline pipeline(segmenter(), PipelineConfig{2, DropPolicy::block});
+  Pipeline pipeline(segmenter(), PipelineConfig{2});
   int calls = 0;
-  EXPECT_THROW(pipeline.run(source,
-                            [&](FrameResult&) {
-                              if (++calls == 2) throw Error("disk full");
-                            }),
-               Error);
+  const PipelineOutcome outcome = pipeline.run(source, [&](FrameResult&) {
+    if (++calls == 2) throw Error("disk full");
+  });
+  EXPECT_EQ(outcome.error, "disk full");
   EXPECT_EQ(calls, 2);  // not called again after it threw
+  EXPECT_EQ(outcome.stats.frames_completed, 1u);
+  EXPECT_EQ(outcome.stats.frames_failed, 1u);  // the frame the sink threw on
+  EXPECT_TRUE(outcome.stats.adds_up());
 }
 
 // --- stop --------------------------------------------------------------------------------
 
-// Calls pipeline.stop() once the sink has seen `frames` frames.
+// Requests a stop on token() once the sink has seen `frames` frames.
 class StopAfter {
  public:
-  StopAfter(Pipeline& pipeline, std::size_t frames)
-      : frames_(frames), thread_([this, &pipeline] {
+  explicit StopAfter(std::size_t frames)
+      : frames_(frames), thread_([this] {
           std::unique_lock lock(mutex_);
           seen_changed_.wait(lock, [&] { return seen_ >= frames_ || abandoned_; });
           stop_called_ = Clock::now();
           lock.unlock();
-          pipeline.stop();
+          stop_.request_stop();
         }) {}
   ~StopAfter() {  // also when run() returned before the sink saw enough frames
     {
@@ -416,6 +425,7 @@ class StopAfter {
     }
     seen_changed_.notify_one();
   }
+  std::stop_token token() const { return stop_.get_token(); }
   Clock::time_point stop_called() {
     std::lock_guard lock(mutex_);
     return stop_called_;
@@ -428,23 +438,29 @@ class StopAfter {
   std::size_t frames_;
   bool abandoned_ = false;
   Clock::time_point stop_called_{};
+  std::stop_source stop_;
   std::thread thread_;
 };
 
 TEST(PipelineStop, EndsAnEndlessStreamWithEveryTakenFrameCompleted) {
   for (const DropPolicy policy : {DropPolicy::block, DropPolicy::drop_oldest}) {
     EndlessSource source(/*live=*/policy == DropPolicy::drop_oldest);
-    Pipeline pipeline(segmenter(), PipelineConfig{2, policy});
+    Pipeline pipeline(segmenter(), PipelineConfig{2});
     std::vector<std::uint64_t> seen;
     PipelineStats stats;
     Clock::time_point returned;
     {
-      StopAfter stopper(pipeline, 3);
-      stats = pipeline.run(source, [&](FrameResult& r) {
-        EXPECT_TRUE(r.segmentation.labels == small_reference());
-        seen.push_back(r.frame.index);
-        stopper.saw_frame();
-      });
+      StopAfter stopper(3);
+      const PipelineOutcome outcome = pipeline.run(
+          source,
+          [&](FrameResult& r) {
+            EXPECT_TRUE(r.segmentation.labels == small_reference());
+            seen.push_back(r.frame.index);
+            stopper.saw_frame();
+          },
+          stopper.token());
+      EXPECT_EQ(outcome.error, "");
+      stats = outcome.stats;
       returned = Clock::now();
       const double stop_to_return_s = std::chrono::duration<double>(returned - stopper.stop_called()).count();
       EXPECT_LT(stop_to_return_s, 5.0);
@@ -452,27 +468,31 @@ TEST(PipelineStop, EndsAnEndlessStreamWithEveryTakenFrameCompleted) {
     EXPECT_GE(seen.size(), 3u);
     EXPECT_EQ(stats.frames_completed, seen.size());
     EXPECT_TRUE(strictly_increasing(seen));
-    if (policy == DropPolicy::block) {  // lossless: every frame taken reached the sink, 0, 1, 2, ...
-      EXPECT_EQ(stats.frames_received, seen.size());
-      EXPECT_EQ(stats.frames_dropped, 0u);
+    EXPECT_TRUE(stats.adds_up());
+    // Lossless until the stop: frames 0, 1, 2, ... reached the sink; at most the
+    // one frame taken while the stop came never entered the graph.
+    if (policy == DropPolicy::block) {
       EXPECT_EQ(seen.back(), seen.size() - 1);
-    } else {
-      EXPECT_EQ(stats.frames_received, stats.frames_completed + stats.frames_dropped);
     }
+    EXPECT_LE(stats.frames_dropped, policy == DropPolicy::block ? 1u : stats.frames_received);
   }
 }
 
 TEST(PipelineStop, UnblocksASourceWaitingForItsNextFrame) {
   EndlessSource source(/*live=*/false, /*block_after=*/2);
-  Pipeline pipeline(segmenter(), PipelineConfig{2, DropPolicy::block});
+  Pipeline pipeline(segmenter(), PipelineConfig{2});
   std::vector<std::uint64_t> seen;
   PipelineStats stats;
   {
-    StopAfter stopper(pipeline, 2);
-    stats = pipeline.run(source, [&](FrameResult& r) {
-      seen.push_back(r.frame.index);
-      stopper.saw_frame();
-    });
+    StopAfter stopper(2);
+    stats = pipeline.run(
+                    source,
+                    [&](FrameResult& r) {
+                      seen.push_back(r.frame.index);
+                      stopper.saw_frame();
+                    },
+                    stopper.token())
+                .stats;
   }
   EXPECT_EQ(seen, (std::vector<std::uint64_t>{0, 1}));
   EXPECT_EQ(stats.frames_received, 2u);
@@ -480,8 +500,20 @@ TEST(PipelineStop, UnblocksASourceWaitingForItsNextFrame) {
 }
 
 TEST(PipelineConstruction, ZeroFramesInFlightIsRejected) {
-  EXPECT_THROW(Pipeline(segmenter(), PipelineConfig{0, DropPolicy::block}), Error);
-  EXPECT_NO_THROW(Pipeline(segmenter(), PipelineConfig{1, DropPolicy::drop_oldest}));
+  EXPECT_THROW(Pipeline(segmenter(), PipelineConfig{0}), Error);
+  EXPECT_NO_THROW(Pipeline(segmenter(), PipelineConfig{1}));
+}
+
+TEST(PipelineStop, AStopBeforeRunTakesNoFrame) {
+  EndlessSource source(/*live=*/false);
+  std::stop_source stop;
+  stop.request_stop();
+  int calls = 0;
+  const PipelineOutcome outcome = Pipeline(segmenter(), PipelineConfig{2}).run(source, [&](FrameResult&) { ++calls; },
+                                                                                stop.get_token());
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(outcome.stats.frames_received, 0u);
+  EXPECT_TRUE(outcome.stats.adds_up());
 }
 
 }  // namespace

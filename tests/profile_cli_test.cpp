@@ -67,7 +67,7 @@ class ProfileCliTest : public LccpBinaryTest {
     if (lines.empty()) return 0;
     EXPECT_EQ(lines[0],
               "index,timestamp_us,captured_s,back_projection_ms,voxelize_ms,normals_ms,seeds_ms,growth_ms,"
-              "adjacency_ms,classify_ms,label_ms,filter_ms,end_to_end_ms,segments,failed");
+              "adjacency_ms,classify_ms,components_ms,filter_ms,end_to_end_ms,segments,failed");
     for (std::size_t row = 1; row < lines.size(); ++row) {
       const std::vector<std::string> fields = fields_of(lines[row]);
       EXPECT_EQ(fields.size(), 15u) << lines[row];
@@ -103,7 +103,7 @@ TEST_F(ProfileCliTest, RecordingGivesTheReportsForEveryFrame) {
   EXPECT_LE(end_to_end.p95, end_to_end.p99);
   EXPECT_LE(end_to_end.p99, end_to_end.max);
   double stage_medians = 0;
-  for (const char* node : {"back_projection", "voxelize_normals", "supervoxels", "classify_label_filter"}) {
+  for (const char* node : {"back_projection", "voxelize_normals", "supervoxels", "graph_labels"}) {
     const Latency stage = latency(report, node);
     EXPECT_GT(stage.p50, 0) << node;
     EXPECT_LE(stage.max, end_to_end.max) << node;
@@ -118,8 +118,9 @@ TEST_F(ProfileCliTest, RecordingGivesTheReportsForEveryFrame) {
   EXPECT_EQ(html.find("src="), std::string::npos);
   EXPECT_EQ(html.find("http"), std::string::npos) << "the page must not fetch anything";
 
-  for (const char* row : {"back-projection", "voxelize + normals", "supervoxels", "classify + label + filter",
-                          "end to end", "p50", "p95", "p99", "max", "throughput", "10 completed, 0 dropped",
+  for (const char* row : {"back-projection", "voxelize + normals", "seeds + growth",
+                          "adjacency + classify + components + filter", "end to end", "p50", "p95", "p99", "max",
+                          "throughput", "10 received + 0 sensor gaps = 10 completed + 0 failed + 0 dropped",
                           "CPU use"}) {
     EXPECT_NE(r.out.find(row), std::string::npos) << "stdout has no '" << row << "': " << r.out;
   }
@@ -134,8 +135,18 @@ TEST_F(ProfileCliTest, FolderOfCloudsGivesOneFramePerCloud) {
 }
 
 TEST_F(ProfileCliTest, LiveVirtualSensorAccountsForEveryFrame) {
-  expect_success(profile({"virtual://synthetic", "--frames", "15"}));
+  const RunResult r = profile({"virtual://synthetic", "--frames", "15"});
+  expect_success(r);
   const std::string report = read_bytes(out_ / "report.json");
+  // The counts add up, and stdout, report.json and report.html say the same.
+  const auto n = [&](const char* key) { return static_cast<long>(json_number(report, key)); };
+  EXPECT_EQ(n("frames_received") + n("sensor_gaps"), n("frames_completed") + n("frames_failed") + n("frames_dropped"));
+  const std::string counts = std::to_string(n("frames_received")) + " received + " + std::to_string(n("sensor_gaps")) +
+                             " sensor gaps = " + std::to_string(n("frames_completed")) + " completed + " +
+                             std::to_string(n("frames_failed")) + " failed + " + std::to_string(n("frames_dropped")) +
+                             " dropped";
+  EXPECT_NE(r.out.find(counts), std::string::npos) << r.out;
+  EXPECT_NE(read_bytes(out_ / "report.html").find(counts), std::string::npos);
   EXPECT_EQ(json_number(report, "frames_received"), 15) << report;
   // Every frame taken is completed or dropped; frames_dropped also counts the frame
   // numbers the sensor skipped, which a loaded machine or a sanitizer build makes many.

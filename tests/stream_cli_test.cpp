@@ -44,6 +44,19 @@ std::pair<std::uint64_t, std::uint64_t> index_and_timestamp(const std::string& n
 }
 
 // One recording of the virtual sensor's synthetic scene, made once with `lccp record`.
+// summary.json's counts add up (received + sensor gaps = completed + failed +
+// dropped), and the summary line on stdout says the same numbers.
+void expect_counts_add_up(const std::string& summary, const std::string& out) {
+  const auto n = [&](const char* key) { return static_cast<long>(json_number(summary, key)); };
+  EXPECT_EQ(n("frames_received") + n("sensor_gaps"), n("frames_completed") + n("frames_failed") + n("frames_dropped"))
+      << summary;
+  const std::string line = std::to_string(n("frames_received")) + " received + " + std::to_string(n("sensor_gaps")) +
+                           " sensor gaps = " + std::to_string(n("frames_completed")) + " completed + " +
+                           std::to_string(n("frames_failed")) + " failed + " + std::to_string(n("frames_dropped")) +
+                           " dropped";
+  EXPECT_NE(out.find(line), std::string::npos) << "stdout: " << out << "\nexpected: " << line;
+}
+
 class StreamCliTest : public LccpBinaryTest {
  protected:
   StreamCliTest() : LccpBinaryTest("lccp_stream_cli") {}
@@ -107,7 +120,9 @@ TEST_F(StreamCliTest, ReplayGivesEveryFrameInOrderWithIncreasingTimestamps) {
       EXPECT_GT(timestamp, index_and_timestamp(pngs[i - 1]).second);
     }
   }
-  EXPECT_NE(r.out.find("frames " + std::to_string(kRecordedFrames) + " done, 0 dropped, 0 failed"), std::string::npos)
+  const std::string n = std::to_string(kRecordedFrames);
+  EXPECT_NE(r.out.find("frames " + n + " received + 0 sensor gaps = " + n + " completed + 0 failed + 0 dropped"),
+            std::string::npos)
       << r.out;
 }
 
@@ -141,7 +156,7 @@ TEST_F(StreamCliTest, LiveOnTheVirtualSensorForFiveSecondsAccountsForAboutOneHun
   // more than 5 s of them. How close to 150 that gets depends on how fast the machine
   // renders and takes frames: a sanitizer build takes one every second or so.
   EXPECT_GE(received, 1) << summary;
-  EXPECT_GE(completed + dropped, received) << summary;
+  expect_counts_add_up(summary, r.out);
   EXPECT_LE(completed + dropped, 152) << summary;
   // The synthetic scene (300k points, 100k voxels a frame) is heavier than mOSD: on
   // busy cores or in a sanitizer build most frames are dropped, and counted. How many
@@ -169,6 +184,7 @@ TEST_F(StreamCliTest, LiveDeviceThatDisappearsFlushesItsFramesAndFails) {
   EXPECT_LE(received, 20) << summary;
   EXPECT_NE(r.err.find("disconnected after " + std::to_string(static_cast<int>(received)) + " frames"), std::string::npos);
   EXPECT_GE(json_number(summary, "frames_completed") + json_number(summary, "frames_dropped"), 20) << summary;
+  expect_counts_add_up(summary, r.out);
   EXPECT_EQ(frame_files(out, ".png").size(), static_cast<std::size_t>(json_number(summary, "frames_completed")));
 }
 

@@ -161,7 +161,7 @@ TEST(Supervoxels, ConcaveCornerDoesNotMixPlanes) {
 }
 
 TEST(Supervoxels, IsolatedVoxelsStillGetASupervoxel) {
-  // GUIDE: PCL leaves finite points unlabelled when no supervoxel reaches their voxel. A
+  // PCL leaves finite points unlabelled when no supervoxel reaches their voxel. A
   // patch plus two stray points 30 cm away (each its own voxel, no neighbours): each must
   // end up in a supervoxel of its own (a seedless component becomes a supervoxel).
   auto scene = test::render({test::fronto_parallel_rect(1.0, 0.10)});

@@ -1,4 +1,4 @@
-// An OpenNI2 driver (GUIDE 4) exposing a virtual Kinect-class depth sensor, so that
+// An OpenNI2 driver (OpenNI2 Driver API, Include/Driver/OniDriverAPI.h) exposing a virtual Kinect-class depth sensor, so that
 // live capture, recording and device loss can be run and tested without hardware.
 // Devices: virtual://synthetic (announced at start-up) and any virtual://... URI a
 // client opens (virtual_uri.hpp). One depth sensor per device, free-running like a
@@ -160,7 +160,8 @@ class DepthStream final : public oni::driver::StreamBase {
     switch (id) {
       case ONI_STREAM_PROPERTY_VIDEO_MODE: return put(data, size, to_oni(mode_));
       case ONI_STREAM_PROPERTY_CROPPING: {
-        // No cropping: the whole image. Recordings need the property (GUIDE 4).
+        // No cropping: the whole image. openni::Recorder asks every stream for it
+        // (Source/Core/OniRecorder.cpp) and fails the recording without it.
         OniCropping cropping{};
         cropping.enabled = FALSE;
         cropping.width = static_cast<int>(mode_.width);

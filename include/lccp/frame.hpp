@@ -15,7 +15,8 @@ using Clock = std::chrono::steady_clock;
 
 // A depth image as OpenNI2 delivers it: row-major millimetres, 0 = no return.
 // The stream's fields of view are the whole camera model (an .oni stores
-// nothing else): fx = width / (2 tan(hfov / 2)), cx = width / 2 (GUIDE 4).
+// nothing else): fx = width / (2 tan(hfov / 2)), cx = width / 2, as OpenNI2's
+// CoordinateConverter::convertDepthToWorld computes it.
 struct DepthImage {
   std::uint32_t width = 0;
   std::uint32_t height = 0;

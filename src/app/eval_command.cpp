@@ -140,7 +140,7 @@ Subcommand add_eval_command(CLI::App& cli) {
       ->required();
   command->add_option("--ignore", options->ignore, "ground-truth labels to leave out, e.g. 0-9 (mOSD's table)");
   command->add_flag("--json", options->json, "print the scores as one JSON object");
-  return {command, [options] { return run_eval(*options); }};
+  return {command, [options](std::stop_token) { return run_eval(*options); }};
 }
 
 }  // namespace lccp::app

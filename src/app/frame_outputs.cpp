@@ -3,29 +3,42 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "commands.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/atomic_file.hpp"
-#include "lccp/io/cloud_io.hpp"
 
 namespace lccp::app {
-namespace {
 
-bool contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
-
-}  // namespace
-
-void FrameOutputOptions::add_to(CLI::App& command) {
+void FrameOutputOptions::add_to(CLI::App& command, std::vector<std::string> default_save) {
+  save = std::move(default_save);
   command.add_option("-o,--output-dir", directory, "folder for per-frame outputs and summary.json (created if missing)");
-  command.add_option("--save", save, "per-frame outputs: pcd (labelled cloud), png (label image), or both")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"pcd", "png"}))
+  save_option = command.add_option("--save", save, "per-frame outputs: pcd, ply (labelled clouds), png (label image)")
+                    ->delimiter(',')
+                    ->check(CLI::IsMember({"pcd", "ply", "png"}))
+                    ->capture_default_str();
+  command.add_flag("--overlay", overlay, "label images over the shaded depth image, so the scene shows");
+  command.add_option("--pcd-data", pcd_data, "PCD encoding: binary_compressed or binary")
+      ->check(CLI::IsMember({"binary_compressed", "binary"}))
       ->capture_default_str();
 }
 
-bool FrameOutputOptions::pcd() const { return contains(save, "pcd"); }
-bool FrameOutputOptions::png() const { return contains(save, "png"); }
+void FrameOutputOptions::check() const {
+  if (directory.empty() && save_option != nullptr && save_option->count() > 0) {
+    throw UsageError("--save needs -o DIR, the folder the per-frame outputs go to");
+  }
+}
+
+bool FrameOutputOptions::saves(const std::string& kind) const {
+  return std::find(save.begin(), save.end(), kind) != save.end();
+}
+
+PcdEncoding FrameOutputOptions::pcd_encoding() const {
+  return pcd_data == "binary" ? PcdEncoding::binary : PcdEncoding::binary_compressed;
+}
+
+LabelImageStyle FrameOutputOptions::image_style() const {
+  return overlay ? LabelImageStyle::overlay : LabelImageStyle::labels;
+}
 
 std::string frame_output_stem(const Frame& frame) {
   if (!frame.name.empty()) return frame.name;
@@ -36,23 +49,24 @@ std::string frame_output_stem(const Frame& frame) {
 }
 
 FrameWriter::FrameWriter(const FrameOutputOptions& options) : options_(options), directory_(options.directory) {
-  if (directory_.empty()) return;
-  std::error_code error;
-  std::filesystem::create_directories(directory_, error);
-  if (!std::filesystem::is_directory(directory_)) throw Error("cannot create output folder " + directory_.string());
+  if (!directory_.empty()) create_output_folder(directory_);
 }
 
 void FrameWriter::write(const FrameResult& result) {
   if (directory_.empty()) return;
+  const std::string name = frame_output_stem(result.frame);
+  if (!stems_.insert(name).second) throw Error("two inputs named " + name + ": their outputs would overwrite each other");
   const PointCloud& cloud = result.frame.cloud;
   const Labels no_labels(cloud.size(), 0);
   const Labels& labels = result.segmentation.labels.size() == cloud.size() ? result.segmentation.labels : no_labels;
-  const std::string stem = (directory_ / frame_output_stem(result.frame)).string();
+  const std::string stem = (directory_ / name).string();
   std::vector<FileBytes> files;
-  if (options_.pcd()) files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels)});
-  if (options_.png() && cloud.organized()) files.push_back({stem + ".png", encode_label_png(cloud, labels)});
+  if (options_.saves("pcd")) files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels, options_.pcd_encoding())});
+  if (options_.saves("ply")) files.push_back({stem + ".ply", encode_labelled_ply(cloud, labels)});
+  if (options_.saves("png") && cloud.organized()) {
+    files.push_back({stem + ".png", encode_label_png(cloud, labels, options_.image_style())});
+  }
   write_files_together(files);  // a frame's outputs appear together or not at all
-  ++frames_written_;
 }
 
 }  // namespace lccp::app

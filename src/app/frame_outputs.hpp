@@ -1,38 +1,49 @@
 #pragma once
-// Per-frame outputs of a stream run: labelled PCD and/or colour label PNG in a folder.
+// Per-frame outputs of a stream run: labelled PCD / PLY and colour label PNG in a folder.
 #include <filesystem>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "lccp/io/cloud_io.hpp"
 #include "lccp/pipeline/pipeline.hpp"
 
 namespace lccp::app {
 
 struct FrameOutputOptions {
-  std::string directory;          // empty: no per-frame outputs
-  std::vector<std::string> save{"png"};  // any of pcd, png
+  std::string directory;                 // empty: no per-frame outputs
+  std::vector<std::string> save{"png"};  // any of pcd, ply, png
+  bool overlay = false;                  // label images over the shaded depth image
+  std::string pcd_data = "binary_compressed";
+  CLI::Option* save_option = nullptr;    // to tell a given --save from the default
 
-  void add_to(CLI::App& command);
-  bool pcd() const;
-  bool png() const;
+  // -o, --save, --overlay, --pcd-data; `default_save` is --save's default.
+  void add_to(CLI::App& command, std::vector<std::string> default_save = {"png"});
+  // Throws UsageError for --save without -o (the outputs would go nowhere).
+  void check() const;
+  bool saves(const std::string& kind) const;
+  PcdEncoding pcd_encoding() const;
+  LabelImageStyle image_style() const;
 };
 
 // Output name of a frame: frame_<index>_<timestamp>us, or the source file's stem.
 std::string frame_output_stem(const Frame& frame);
 
-// Writes the selected outputs of each finished frame into the directory
-// (created if missing). A frame without labels (it failed) is written with label 0.
+// Writes the selected outputs of each finished frame into the folder (created
+// if missing); a frame's files appear together. A frame without labels (it
+// failed) is written with label 0. Throws lccp::Error when two frames would
+// get the same name (two input files of one stem).
 class FrameWriter {
  public:
   explicit FrameWriter(const FrameOutputOptions& options);
   void write(const FrameResult& result);
-  std::uint64_t frames_written() const { return frames_written_; }
 
  private:
   FrameOutputOptions options_;
   std::filesystem::path directory_;
-  std::uint64_t frames_written_ = 0;
+  std::set<std::string> stems_;
 };
 
 }  // namespace lccp::app

@@ -8,20 +8,17 @@ namespace {
 
 struct LiveCommandOptions {
   std::string uri;
-  std::uint64_t frames = 0;  // 0: no limit
-  double seconds = 0;        // 0: no limit
   StreamOptions stream;
 };
 
-int run_live(const LiveCommandOptions& options) {
-  const StopOnSignal stop;
-  LiveOptions live;
-  live.uri = options.uri;
-  if (options.frames > 0) live.max_frames = options.frames;
-  if (options.seconds > 0) live.max_seconds = options.seconds;
-  const auto source = open_device(live);
-  return run_stream(*source, options.stream, "live " + (options.uri.empty() ? std::string("first device") : options.uri),
-                    stop);
+int run_live(const LiveCommandOptions& options, std::stop_token stop) {
+  options.stream.outputs.check();
+  const std::string uri = options.uri.empty() ? first_sensor_uri() : options.uri;
+  if (source_kind({uri}) != SourceKind::device) {
+    throw UsageError("--uri " + uri + " is not a device URI (e.g. virtual://synthetic); lccp replay plays .oni files");
+  }
+  const auto source = open_source({uri}, {options.stream.limits.limits(), false});
+  return run_stream(*source, options.stream, "live " + uri, stop);
 }
 
 }  // namespace
@@ -29,12 +26,11 @@ int run_live(const LiveCommandOptions& options) {
 Subcommand add_live_command(CLI::App& cli) {
   auto options = std::make_shared<LiveCommandOptions>();
   CLI::App* command = cli.add_subcommand("live", "segment a live OpenNI2 depth sensor until N frames, S seconds or Ctrl-C");
-  command->add_option("--uri", options->uri, "OpenNI2 device URI (default: the first device), e.g. virtual://synthetic");
-  auto* frames = command->add_option("--frames", options->frames, "stop after N frames");
-  auto* seconds = command->add_option("--seconds", options->seconds, "stop after S seconds")->check(CLI::PositiveNumber);
-  frames->excludes(seconds);
+  command->add_option("--uri", options->uri,
+                      "OpenNI2 device URI (default: the first attached sensor; lccp devices lists them), "
+                      "e.g. virtual://synthetic for the built-in virtual sensor");
   options->stream.add_to(*command);
-  return {command, [options] { return run_live(*options); }};
+  return {command, [options](std::stop_token stop) { return run_live(*options, stop); }};
 }
 
 }  // namespace lccp::app

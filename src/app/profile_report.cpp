@@ -330,8 +330,7 @@ std::string html_summary_table(const ProfileSetup& setup, const RunReport& repor
       {"config", html_escape(config_line(setup))},
       {"threads / cores", fmt::format("{} / {}", setup.threads, cpu.cores)},
       {"frames in flight (K)", fmt::format("{}, {}", setup.frames_in_flight, policy_name(setup.drop_policy))},
-      {"frames", fmt::format("{} received, {} completed, {} dropped, {} failed", stats.frames_received,
-                             stats.frames_completed, stats.frames_dropped, report.frames_failed())},
+      {"frames", counts_text(stats)},
       {"throughput", fmt::format("{:.1f} frames/s ({} frames in {:.2f} s)", report.frames_per_second(),
                                  stats.frames_completed, stats.wall_seconds)},
       {"CPU use", fmt::format("{:.0f}% of one core, {:.0f}% of {} cores (user {:.2f} s, system {:.2f} s)",
@@ -361,24 +360,32 @@ svg text.p50-label{fill:#1f77b4}svg text.p99-label{fill:#c45f00}svg text.period-
 
 }  // namespace
 
+// "voxelize + normals": the stages a pipeline node runs.
+std::string node_label(unsigned node) {
+  std::string label;
+  for (const StageInfo& info : kStages) {
+    if (info.node == node) label += (label.empty() ? "" : " + ") + std::string(info.name);
+  }
+  return label;
+}
+
 const std::vector<LatencyRow>& latency_rows() {
-  static const std::vector<LatencyRow> rows{
-      {"back_projection", "back-projection", Kind::node, [](const FrameRecord& f) { return f.back_projection_ms; }},
-      {"voxelize_normals", "voxelize + normals", Kind::node, [](const FrameRecord& f) { return f.voxelize_normals_ms(); }},
-      {"voxelize", "voxelize", Kind::stage, [](const FrameRecord& f) { return f.stages.voxelize_ms; }},
-      {"normals", "normals", Kind::stage, [](const FrameRecord& f) { return f.stages.normals_ms; }},
-      {"supervoxels", "supervoxels", Kind::node, [](const FrameRecord& f) { return f.supervoxels_ms(); }},
-      {"seeds", "seeds", Kind::stage, [](const FrameRecord& f) { return f.stages.seeds_ms; }},
-      {"growth", "growth", Kind::stage, [](const FrameRecord& f) { return f.stages.growth_ms; }},
-      {"classify_label_filter", "classify + label + filter", Kind::node,
-       [](const FrameRecord& f) { return f.classify_label_filter_ms(); }},
-      {"adjacency", "adjacency", Kind::stage, [](const FrameRecord& f) { return f.stages.adjacency_ms; }},
-      {"classify", "classify", Kind::stage, [](const FrameRecord& f) { return f.stages.classify_ms; }},
-      {"label", "label", Kind::stage, [](const FrameRecord& f) { return f.stages.label_ms; }},
-      {"filter", "filter", Kind::stage, [](const FrameRecord& f) { return f.stages.filter_ms; }},
-      {"waiting", "waiting", Kind::waiting, [](const FrameRecord& f) { return f.waiting_ms(); }},
-      {"end_to_end", "end to end", Kind::end_to_end, [](const FrameRecord& f) { return f.end_to_end_ms; }},
-  };
+  static const std::vector<LatencyRow> rows = [] {
+    std::vector<LatencyRow> all{
+        {"back_projection", "back-projection", Kind::node, [](const FrameRecord& f) { return f.back_projection_ms; }}};
+    for (unsigned node = 0; node < kPipelineNodes.size(); ++node) {
+      all.push_back({std::string(kPipelineNodes[node]), node_label(node), Kind::node,
+                     [node](const FrameRecord& f) { return f.stages.node_ms(node); }});
+      for (const StageInfo& info : kStages) {
+        if (info.node != node) continue;
+        all.push_back({std::string(info.name), std::string(info.name), Kind::stage,
+                       [stage = info.stage](const FrameRecord& f) { return f.stages[stage]; }});
+      }
+    }
+    all.push_back({"waiting", "waiting", Kind::waiting, [](const FrameRecord& f) { return f.waiting_ms(); }});
+    all.push_back({"end_to_end", "end to end", Kind::end_to_end, [](const FrameRecord& f) { return f.end_to_end_ms; }});
+    return all;
+  }();
   return rows;
 }
 
@@ -388,10 +395,10 @@ std::string profile_table(const ProfileSetup& setup, const RunReport& report) {
   std::string table = fmt::format("profile {} ({}{}): {}, K = {} ({}), config {}\n", setup.source,
                                   to_string(setup.kind), setup.realtime ? ", real time" : "", counted(setup.threads, "thread"),
                                   setup.frames_in_flight, policy_name(setup.drop_policy), config_line(setup));
-  const std::uint64_t succeeded = stats.frames_completed - std::min(stats.frames_completed, report.frames_failed());
+  const std::uint64_t succeeded = stats.frames_completed;
   table += fmt::format("{:<28}{:>9}{:>9}{:>9}{:>9}   (ms, {})\n", "stage", "p50", "p95", "p99", "max",
-                       report.frames_failed() > 0 ? fmt::format("the {} of {} frames that succeeded", succeeded,
-                                                                stats.frames_completed)
+                       stats.frames_failed > 0 ? fmt::format("the {} of {} frames that succeeded", succeeded,
+                                                             stats.frames_completed + stats.frames_failed)
                                                   : counted(succeeded, "frame"));
   for (const LatencyRow& row : latency_rows()) {
     const Percentiles p = report.percentiles_of(row.ms);
@@ -400,8 +407,7 @@ std::string profile_table(const ProfileSetup& setup, const RunReport& report) {
   }
   table += fmt::format("throughput  {:.1f} frames/s ({} frames in {:.2f} s)\n", report.frames_per_second(),
                        stats.frames_completed, stats.wall_seconds);
-  table += fmt::format("frames      {} received, {} completed, {} dropped, {} failed\n", stats.frames_received,
-                       stats.frames_completed, stats.frames_dropped, report.frames_failed());
+  table += "frames      " + counts_text(stats) + "\n";
   table += fmt::format("CPU use     {:.0f}% of one core, {:.0f}% of {} cores (user {:.2f} s, system {:.2f} s)\n",
                        cpu.percent_of_one_core(), cpu.percent_of_cores(), cpu.cores, cpu.user_s, cpu.system_s);
   return table;
@@ -426,11 +432,9 @@ void write_profile_json(const std::filesystem::path& path, const ProfileSetup& s
         << "  \"cores\": " << cpu.cores << ",\n"
         << "  \"frames_in_flight\": " << setup.frames_in_flight << ",\n"
         << "  \"drop_policy\": " << json_string(policy_name(setup.drop_policy)) << ",\n"
-        << "  \"frames_received\": " << stats.frames_received << ",\n"
-        << "  \"frames_completed\": " << stats.frames_completed << ",\n"
-        << "  \"frames_dropped\": " << stats.frames_dropped << ",\n"
-        << "  \"frames_failed\": " << report.frames_failed() << ",\n"
-        << "  \"wall_seconds\": " << json_value(stats.wall_seconds) << ",\n"
+        << "";
+    write_counts_json(out, stats, "  ");
+    out << ",\n  \"wall_seconds\": " << json_value(stats.wall_seconds) << ",\n"
         << "  \"frames_per_second\": " << json_value(report.frames_per_second()) << ",\n"
         << "  \"cpu_user_seconds\": " << json_value(cpu.user_s) << ",\n"
         << "  \"cpu_system_seconds\": " << json_value(cpu.system_s) << ",\n"
@@ -455,14 +459,13 @@ void write_profile_json(const std::filesystem::path& path, const ProfileSetup& s
 
 void write_frames_csv(const std::filesystem::path& path, const RunReport& report) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "index,timestamp_us,captured_s,back_projection_ms,voxelize_ms,normals_ms,seeds_ms,growth_ms,adjacency_ms,"
-           "classify_ms,label_ms,filter_ms,end_to_end_ms,segments,failed\n";
+    out << "index,timestamp_us,captured_s,back_projection_ms";
+    for (const StageInfo& info : kStages) out << "," << info.name << "_ms";
+    out << ",end_to_end_ms,segments,failed\n";
     for (const FrameRecord& f : report.frames()) {
-      const StageTimes& t = f.stages;
-      out << fmt::format("{},{},{:.6f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{}\n",
-                         f.index, f.timestamp_us, f.captured_s, f.back_projection_ms, t.voxelize_ms, t.normals_ms,
-                         t.seeds_ms, t.growth_ms, t.adjacency_ms, t.classify_ms, t.label_ms, t.filter_ms,
-                         f.end_to_end_ms, f.segments, f.failed ? 1 : 0);
+      out << fmt::format("{},{},{:.6f},{:.3f}", f.index, f.timestamp_us, f.captured_s, f.back_projection_ms);
+      for (const double ms : f.stages.ms) out << fmt::format(",{:.3f}", ms);
+      out << fmt::format(",{:.3f},{},{}\n", f.end_to_end_ms, f.segments, f.failed ? 1 : 0);
     }
   });
 }

@@ -3,10 +3,11 @@
 // self-contained page: inline SVG and CSS, no script, nothing fetched), and the
 // table printed to stdout.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "frame_source_spec.hpp"
+#include "lccp/capture/open_source.hpp"
 #include "lccp/config.hpp"
 #include "run_report.hpp"
 
@@ -33,15 +34,14 @@ struct LatencyRow {
     waiting,     // end to end minus the nodes: waiting for a slot, between nodes, for earlier frames
     end_to_end,  // captured -> labels ready
   };
-  const char* key;    // JSON key
-  const char* label;  // for people
+  std::string key;    // JSON key
+  std::string label;  // for people
   Kind kind;
-  double (*ms)(const FrameRecord&);
+  std::function<double(const FrameRecord&)> ms;
 };
 
-// back-projection; voxelize + normals (voxelize, normals); supervoxels (seeds,
-// growth); classify + label + filter (adjacency, classify, label, filter);
-// waiting; end to end.
+// back-projection; then per pipeline node (kPipelineNodes) the node and its
+// stages (kStages); waiting; end to end.
 const std::vector<LatencyRow>& latency_rows();
 
 // Stages x p50 / p95 / p99 / max (ms), then throughput, frames dropped, CPU use.

@@ -48,10 +48,6 @@ void RunReport::add(const FrameResult& result) {
   frames_.push_back(record);
 }
 
-std::uint64_t RunReport::frames_failed() const {
-  return static_cast<std::uint64_t>(std::count_if(frames_.begin(), frames_.end(), [](const auto& f) { return f.failed; }));
-}
-
 double RunReport::frames_per_second() const {
   return stats_.wall_seconds > 0 ? static_cast<double>(stats_.frames_completed) / stats_.wall_seconds : 0;
 }
@@ -70,27 +66,34 @@ Percentiles RunReport::percentiles_of(const std::function<double(const FrameReco
   return percentiles(std::move(values));
 }
 
+std::string counts_text(const PipelineStats& s) {
+  const auto n = [](std::uint64_t count) { return std::to_string(count); };
+  return n(s.frames_received) + " received + " + n(s.sensor_gaps) + " sensor gaps = " + n(s.frames_completed) +
+         " completed + " + n(s.frames_failed) + " failed + " + n(s.frames_dropped) + " dropped";
+}
+
+void write_counts_json(std::ostream& out, const PipelineStats& s, const char* indent) {
+  out << indent << "\"frames_received\": " << s.frames_received << ",\n"
+      << indent << "\"sensor_gaps\": " << s.sensor_gaps << ",\n"
+      << indent << "\"frames_completed\": " << s.frames_completed << ",\n"
+      << indent << "\"frames_failed\": " << s.frames_failed << ",\n"
+      << indent << "\"frames_dropped\": " << s.frames_dropped;
+}
+
 std::string RunReport::summary_line() const {
   const Percentiles latency = end_to_end_ms();
   char line[256];
-  std::snprintf(line, sizeof line,
-                "frames %llu done, %llu dropped, %llu failed | %.1f frames/s | latency ms p50 %.1f p95 %.1f max %.1f",
-                static_cast<unsigned long long>(stats_.frames_completed),
-                static_cast<unsigned long long>(stats_.frames_dropped),
-                static_cast<unsigned long long>(frames_failed()), frames_per_second(), latency.p50, latency.p95,
-                latency.max);
-  return line;
+  std::snprintf(line, sizeof line, " | %.1f frames/s | latency ms p50 %.1f p95 %.1f max %.1f", frames_per_second(),
+                latency.p50, latency.p95, latency.max);
+  return "frames " + counts_text(stats_) + line;
 }
 
 void RunReport::write_json(const std::filesystem::path& path, const std::string& source) const {
   const Percentiles latency = end_to_end_ms();
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "{\n  \"source\": " << json_string(source) << ",\n"
-        << "  \"frames_received\": " << stats_.frames_received << ",\n"
-        << "  \"frames_completed\": " << stats_.frames_completed << ",\n"
-        << "  \"frames_dropped\": " << stats_.frames_dropped << ",\n"
-        << "  \"frames_failed\": " << frames_failed() << ",\n"
-        << "  \"wall_seconds\": " << stats_.wall_seconds << ",\n"
+    out << "{\n  \"source\": " << json_string(source) << ",\n";
+    write_counts_json(out, stats_, "  ");
+    out << ",\n  \"wall_seconds\": " << stats_.wall_seconds << ",\n"
         << "  \"frames_per_second\": " << frames_per_second() << ",\n"
         << "  \"end_to_end_ms\": {\"p50\": " << latency.p50 << ", \"p95\": " << latency.p95
         << ", \"p99\": " << latency.p99 << ", \"max\": " << latency.max << "}\n}\n";

@@ -22,12 +22,6 @@ struct FrameRecord {
   std::uint32_t segments = 0;
   bool failed = false;
 
-  // The pipeline's nodes, each a group of the method's stages.
-  double voxelize_normals_ms() const { return stages.voxelize_ms + stages.normals_ms; }
-  double supervoxels_ms() const { return stages.seeds_ms + stages.growth_ms; }
-  double classify_label_filter_ms() const {
-    return stages.adjacency_ms + stages.classify_ms + stages.label_ms + stages.filter_ms;
-  }
   // End to end minus the stages: waiting for a free slot (K frames in flight),
   // between nodes and for the frames before it (the sequencer). >= 0.
   double waiting_ms() const;
@@ -69,14 +63,13 @@ class RunReport {
   const std::vector<FrameRecord>& frames() const { return frames_; }
   const PipelineStats& stats() const { return stats_; }
   const CpuUse& cpu() const { return cpu_; }
-  std::uint64_t frames_failed() const;
   double frames_per_second() const;
   Percentiles end_to_end_ms() const;  // over every completed frame
-  // One per-frame time (e.g. &FrameRecord::supervoxels_ms) over the frames that
+  // One per-frame time (e.g. a stage's) over the frames that
   // did not fail: a failed frame's later stages never ran.
   Percentiles percentiles_of(const std::function<double(const FrameRecord&)>& ms) const;
 
-  // One line: frames done / dropped / failed, fps, latency p50 / p95 / max.
+  // One line: counts_text(), fps, latency p50 / p95 / max.
   std::string summary_line() const;
   void write_json(const std::filesystem::path& path, const std::string& source) const;
 
@@ -86,6 +79,14 @@ class RunReport {
   PipelineStats stats_;
   CpuUse cpu_;
 };
+
+// "81 received + 3 sensor gaps = 70 completed + 0 failed + 14 dropped": the
+// frames the source produced, then where each went (PipelineStats::adds_up).
+std::string counts_text(const PipelineStats& stats);
+
+// The counts as JSON members, `indent` before each: "frames_received": 81, ...
+// (without a trailing comma).
+void write_counts_json(std::ostream& out, const PipelineStats& stats, const char* indent);
 
 // `text` as a JSON string literal, quotes included.
 std::string json_string(std::string_view text);

@@ -1,79 +1,101 @@
-// lccp segment IN -o OUT.pcd [--png OUT.png]: one cloud in, labelled cloud out.
+// lccp segment IN -o OUT.pcd|OUT.ply [--png OUT.png]: one cloud in, labelled cloud out;
+// lccp segment IN... -o DIR: every cloud of the files and folders, one output each.
 #include <cstdio>
 #include <filesystem>
 
 #include "commands.hpp"
+#include "lccp/capture/cloud_files.hpp"
 #include "lccp/core/lccp.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/atomic_file.hpp"
 #include "lccp/io/cloud_io.hpp"
-#include "stop_signal.hpp"
+#include "stream_run.hpp"
 
 namespace lccp::app {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct SegmentOptions {
-  std::string input;
-  std::string output;
+  std::vector<std::string> inputs;
   std::string png;
-  ConfigOptions config;
+  StreamOptions stream;  // -o, --save, --overlay, --pcd-data, --config, --set, --inflight, --quiet
 };
 
 void print_summary(const PointCloud& cloud, const SegmentationResult& r) {
   std::size_t finite = 0;
   for (const auto& p : cloud.points) finite += is_finite(p);
-  const StageTimes& t = r.times;
-  std::printf(
-      "points %zu (finite %zu), voxels %u, supervoxels %u, segments %u | ms: voxelize %.1f normals %.1f seeds %.1f "
-      "growth %.1f adjacency %.1f classify %.1f label %.1f filter %.1f total %.1f\n",
-      cloud.size(), finite, r.voxel_count, r.supervoxel_count, r.segment_count, t.voxelize_ms, t.normals_ms,
-      t.seeds_ms, t.growth_ms, t.adjacency_ms, t.classify_ms, t.label_ms, t.filter_ms, t.total_ms());
-}
-
-// The labelled cloud and, if asked, its label image, written together: both
-// appear, or neither does.
-void write_outputs(const SegmentOptions& options, const PointCloud& cloud, const Labels& labels) {
-  std::vector<FileBytes> files{{options.output, encode_labelled_pcd(cloud, labels)}};
-  if (!options.png.empty()) files.push_back({options.png, encode_label_png(cloud, labels)});
-  write_files_together(files);
+  std::string times;
+  for (const StageInfo& info : kStages) {
+    char time[32];
+    std::snprintf(time, sizeof time, " %.1f", r.times[info.stage]);
+    times += " " + std::string(info.name) + time;
+  }
+  std::printf("points %zu (finite %zu), voxels %u, supervoxels %u, segments %u | ms:%s total %.1f\n", cloud.size(), finite,
+              r.voxel_count, r.supervoxel_count, r.segment_count, times.c_str(), r.times.total_ms());
 }
 
 // -o or --png naming the input (or the same file by another path) would destroy it.
-void refuse_overwriting_input(const SegmentOptions& options) {
-  for (const std::string& output : {options.output, options.png}) {
+void refuse_overwriting_input(const std::string& input, const std::vector<std::string>& outputs) {
+  for (const std::string& output : outputs) {
     std::error_code error;
-    if (!output.empty() && std::filesystem::equivalent(options.input, output, error)) {
+    if (!output.empty() && fs::equivalent(input, output, error)) {
       throw Error(output + ": is the input file; choose another output name");
     }
   }
 }
 
-int run_segment(const SegmentOptions& options) {
-  const StopOnSignal stop;
-  const LccpSegmenter segmenter(options.config.resolve());
-  refuse_overwriting_input(options);
-  const PointCloud cloud = read_cloud(options.input).cloud;
-  if (!options.png.empty() && !cloud.organized()) {
-    throw Error(options.input + ": --png needs an organized (image-shaped) cloud");
-  }
+// One input file, one output file: its extension picks PCD or PLY.
+int segment_one(const SegmentOptions& options, std::stop_token stop) {
+  const std::string& input = options.inputs.front();
+  const std::string& output = options.stream.outputs.directory;
+  const LccpSegmenter segmenter(options.stream.config.resolve());
+  refuse_overwriting_input(input, {output, options.png});
+  const FrameOutputOptions& out = options.stream.outputs;
+  const PointCloud cloud = read_cloud(input).cloud;
+  if (!options.png.empty() && !cloud.organized()) throw Error(input + ": --png needs an organized (image-shaped) cloud");
   const SegmentationResult result = segmenter.segment(cloud);
-  if (stop.requested()) return 130;  // interrupted: nothing written
-  write_outputs(options, cloud, result.labels);
+  if (stop.stop_requested()) return kExitInterrupted;  // interrupted: nothing written
+  std::vector<FileBytes> files{{output, encode_labelled_cloud(output, cloud, result.labels, out.pcd_encoding())}};
+  if (!options.png.empty()) files.push_back({options.png, encode_label_png(cloud, result.labels, out.image_style())});
+  write_files_together(files);  // both appear, or neither does
   print_summary(cloud, result);
-  return 0;
+  return kExitDone;
+}
+
+// Several inputs or a folder: the clouds stream through the pipeline into the folder -o names.
+int segment_many(const SegmentOptions& options, std::stop_token stop) {
+  if (!options.png.empty()) throw UsageError("--png names one image: with several inputs use --save pcd,png");
+  options.stream.outputs.check();
+  const auto source = limit_source(open_cloud_files(std::vector<fs::path>(options.inputs.begin(), options.inputs.end())),
+                                   options.stream.limits.limits());
+  return run_stream(*source, options.stream, "segment", stop);
+}
+
+bool is_single(const SegmentOptions& options) {
+  std::error_code error;
+  const fs::path output(options.stream.outputs.directory);
+  return options.inputs.size() == 1 && !fs::is_directory(options.inputs.front(), error) && output.has_extension() &&
+         !fs::is_directory(output, error);
 }
 
 }  // namespace
 
 Subcommand add_segment_command(CLI::App& cli) {
   auto options = std::make_shared<SegmentOptions>();
-  CLI::App* command = cli.add_subcommand("segment", "segment one point cloud (.pcd or .ply) into objects and parts");
-  command->add_option("input", options->input, "input cloud")->required();
-  command->add_option("-o,--output", options->output, "labelled cloud to write (.pcd with a uint32 label field)")
-      ->required();
-  command->add_option("--png", options->png, "also write a colour image of the labels (organized clouds)");
-  options->config.add_to(*command);
-  return {command, [options] { return run_segment(*options); }};
+  CLI::App* command = cli.add_subcommand(
+      "segment", "segment point clouds (.pcd, .ply) into objects and parts: one file to one file, or many into a folder");
+  command->add_option("inputs", options->inputs, "input clouds, or folders of them")->required();
+  options->stream.add_to(*command);
+  command->get_option("-o")->description(
+      "OUT.pcd or OUT.ply for one input (a uint32 label per point), else a folder (created if missing)");
+  command->get_option("-o")->required();
+  command->get_option("--save")->default_str("pcd");
+  options->stream.outputs.save = {"pcd"};
+  command->add_option("--png", options->png, "one input: also write a colour image of the labels (organized clouds)");
+  return {command, [options](std::stop_token stop) {
+            return is_single(*options) ? segment_one(*options, stop) : segment_many(*options, stop);
+          }};
 }
 
 }  // namespace lccp::app

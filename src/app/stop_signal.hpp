@@ -1,20 +1,29 @@
 #pragma once
-// Ctrl-C (SIGINT) and SIGTERM as a request to stop cleanly.
-#include <atomic>
+// Ctrl-C (SIGINT) and SIGTERM as a stop request on one std::stop_source.
+#include <stop_token>
+#include <thread>
 
 namespace lccp::app {
 
-// Installs the handlers for the whole process; main calls it before any other
-// work, so a signal from the first millisecond on is a stop request. The first
-// signal only stores an atomic (async-signal-safe); a second one restores the
-// default action and re-raises it, so a second Ctrl-C ends a stuck run at once.
-void install_stop_handlers();
-
-// The stop request set by those handlers, for the commands that watch it.
-class StopOnSignal {
+// Owned by main, created before any other work, so a signal from the first
+// millisecond on is a stop request. The handler only writes a byte to a pipe
+// (async-signal-safe, signal-safety(7)); a thread blocked reading the pipe
+// requests the stop, so every wait on the token wakes at once and nothing
+// polls. A second signal restores the default action and re-raises it: a
+// second Ctrl-C ends a stuck run at once.
+class SignalStop {
  public:
-  const std::atomic<bool>& flag() const;
-  bool requested() const { return flag().load(); }
+  SignalStop();
+  ~SignalStop();
+  SignalStop(const SignalStop&) = delete;
+  SignalStop& operator=(const SignalStop&) = delete;
+
+  std::stop_token token() const { return stop_.get_token(); }
+
+ private:
+  std::stop_source stop_;
+  int pipe_[2] = {-1, -1};
+  std::thread waiter_;
 };
 
 }  // namespace lccp::app

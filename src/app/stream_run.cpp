@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <thread>
+#include <limits>
 
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
@@ -46,125 +46,77 @@ class ProgressLine {
   bool shown_ = false;
 };
 
-// Calls pipeline.stop() once the stop flag is set, until the run ends.
-class StopWatcher {
- public:
-  StopWatcher(const std::atomic<bool>& flag, Pipeline& pipeline)
-      : thread_([&flag, &pipeline, this] {
-          while (!done_.load()) {
-            if (flag.load()) {
-              pipeline.stop();
-              return;
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(20));
-          }
-        }) {}
-  ~StopWatcher() {
-    done_.store(true);
-    thread_.join();
-  }
-
- private:
-  std::atomic<bool> done_{false};
-  std::thread thread_;
-};
-
-// Forwards a source and counts what it delivers the way the pipeline does
-// (frames taken; index gaps as lost frames), because the pipeline's own counts
-// are lost when the source throws.
-class CountedSource final : public FrameSource {
- public:
-  explicit CountedSource(FrameSource& source) : source_(source) {}
-
-  std::optional<Frame> next() override {
-    std::optional<Frame> frame = source_.next();
-    if (!frame) return frame;
-    if (last_index_ && frame->index > *last_index_ + 1) lost_ += frame->index - *last_index_ - 1;
-    last_index_ = frame->index;
-    ++received_;
-    return frame;
-  }
-  std::optional<std::uint64_t> frame_count() const override { return source_.frame_count(); }
-  bool is_live() const override { return source_.is_live(); }
-  void request_stop() override { source_.request_stop(); }
-
-  // After a run that ended early: every frame taken and not completed counts as dropped.
-  PipelineStats stats(std::uint64_t completed) const {
-    PipelineStats stats;
-    stats.frames_received = received_;
-    stats.frames_completed = completed;
-    stats.frames_dropped = received_ + lost_ - std::min(completed, received_ + lost_);
-    return stats;
-  }
-
- private:
-  FrameSource& source_;
-  std::optional<std::uint64_t> last_index_;
-  std::uint64_t received_ = 0;
-  std::uint64_t lost_ = 0;
-};
+CpuUse cpu_use_since(const CpuTimes& start, double wall_s) {
+  const CpuTimes end = process_cpu_times();
+  CpuUse cpu;
+  cpu.user_s = end.user_s - start.user_s;
+  cpu.system_s = end.system_s - start.system_s;
+  cpu.wall_s = wall_s;
+  cpu.cores = static_cast<unsigned>(std::max(1, tbb::this_task_arena::max_concurrency()));
+  return cpu;
+}
 
 }  // namespace
 
 void add_inflight_option(CLI::App& command, unsigned& frames_in_flight) {
-  command.add_option("--inflight", frames_in_flight, "frames processed at once (K)")
+  command.add_option("--inflight", frames_in_flight, "frames processed at once (K, 1 to 16)")
       ->check(CLI::Range(1u, 16u))
       ->capture_default_str();
 }
 
-DropPolicy drop_policy_for(const FrameSource& source) {
-  return source.is_live() ? DropPolicy::drop_oldest : DropPolicy::block;
+void LimitOptions::add_to(CLI::App& command) {
+  command.add_option("--frames", frames, "stop after N frames (N >= 1; default: all)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--seconds", seconds, "stop after S seconds (S > 0)")->check(CLI::PositiveNumber);
+}
+
+SourceLimits LimitOptions::limits() const {
+  SourceLimits limits;
+  if (frames > 0) limits.max_frames = frames;
+  if (seconds > 0) limits.max_seconds = seconds;
+  return limits;
 }
 
 PipelineRun run_pipeline(FrameSource& source, const LccpSegmenter& segmenter, const PipelineRunOptions& options,
-                         const StopOnSignal& stop, const std::function<void(const FrameResult&)>& on_frame) {
-  PipelineConfig pipeline_config;
-  pipeline_config.frames_in_flight = options.frames_in_flight;
-  pipeline_config.drop_policy = drop_policy_for(source);
-  Pipeline pipeline(segmenter, pipeline_config);
-  CountedSource counted(source);
-
+                         std::stop_token stop, const std::function<void(const FrameResult&)>& on_frame) {
+  const Pipeline pipeline(segmenter, PipelineConfig{options.frames_in_flight});
   const Clock::time_point start = Clock::now();
   const CpuTimes cpu_start = process_cpu_times();
   PipelineRun run{RunReport(start), {}, false};
   ProgressLine progress(options.progress, source.frame_count(), start);
-  PipelineStats stats;
-  {
-    StopWatcher watcher(stop.flag(), pipeline);
-    try {
-      stats = pipeline.run(counted, [&](FrameResult& result) {
+  const PipelineOutcome outcome = pipeline.run(
+      source,
+      [&](FrameResult& result) {
         if (!result.error.empty()) spdlog::warn("frame {}: {}", result.frame.index, result.error);
         if (on_frame) on_frame(result);
         run.report.add(result);
         progress.update(run.report.frames().size());
-      });
-    } catch (const Error& e) {
-      run.source_error = e.what();
-      stats = counted.stats(run.report.frames().size());
-    }
-  }
-  const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-  if (!run.source_error.empty()) stats.wall_seconds = wall_s;
-  const CpuTimes cpu_end = process_cpu_times();
-  CpuUse cpu;
-  cpu.user_s = cpu_end.user_s - cpu_start.user_s;
-  cpu.system_s = cpu_end.system_s - cpu_start.system_s;
-  cpu.wall_s = wall_s;
-  cpu.cores = static_cast<unsigned>(std::max(1, tbb::this_task_arena::max_concurrency()));
-  run.report.finish(stats, cpu);
-  run.interrupted = stop.requested();
+      },
+      stop);
+  run.report.finish(outcome.stats, cpu_use_since(cpu_start, outcome.stats.wall_seconds));
+  run.error = outcome.error;
+  run.interrupted = stop.stop_requested();
   return run;
+}
+
+int exit_code(const PipelineRun& run, const FrameSource& source) {
+  if (!run.error.empty()) throw Error(run.error);
+  if (!run.interrupted || source.is_live()) return kExitDone;
+  const auto total = source.frame_count();
+  spdlog::warn("interrupted after {} of {} frames", run.report.frames().size(), total ? std::to_string(*total) : "?");
+  return kExitInterrupted;
 }
 
 void StreamOptions::add_to(CLI::App& command) {
   config.add_to(command);
   outputs.add_to(command);
   add_inflight_option(command, frames_in_flight);
+  limits.add_to(command);
   command.add_flag("-q,--quiet", quiet, "no progress line");
 }
 
 int run_stream(FrameSource& source, const StreamOptions& options, const std::string& description,
-               const StopOnSignal& stop) {
+               std::stop_token stop) {
   const LccpSegmenter segmenter(options.config.resolve());
   FrameWriter writer(options.outputs);
   const PipelineRun run = run_pipeline(source, segmenter, {options.frames_in_flight, !options.quiet}, stop,
@@ -173,13 +125,7 @@ int run_stream(FrameSource& source, const StreamOptions& options, const std::str
     run.report.write_json(std::filesystem::path(options.outputs.directory) / "summary.json", description);
   }
   std::printf("%s: %s\n", description.c_str(), run.report.summary_line().c_str());
-  if (!run.source_error.empty()) throw Error(run.source_error);
-  if (run.interrupted && !source.is_live()) {
-    const auto total = source.frame_count();
-    spdlog::warn("interrupted after {} of {} frames", run.report.frames().size(), total ? std::to_string(*total) : "?");
-    return 130;
-  }
-  return 0;
+  return exit_code(run, source);
 }
 
 }  // namespace lccp::app

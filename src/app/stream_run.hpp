@@ -1,21 +1,29 @@
 #pragma once
-// Runs a frame source through the pipeline: per-frame outputs, progress, summary.
+// Runs a frame source through the pipeline: per-frame outputs, progress,
+// summary, exit code. Shared by replay, live and profile.
 #include <functional>
+#include <stop_token>
 #include <string>
 
 #include "commands.hpp"
 #include "frame_outputs.hpp"
-#include "lccp/capture/frame_source.hpp"
+#include "lccp/capture/open_source.hpp"
+#include "lccp/frame_source.hpp"
 #include "run_report.hpp"
-#include "stop_signal.hpp"
 
 namespace lccp::app {
 
-// --inflight K (1..16), shared by the commands that run the pipeline.
+// --inflight K (1..16).
 void add_inflight_option(CLI::App& command, unsigned& frames_in_flight);
 
-// Live sources (a device, --realtime replay) drop the oldest waiting frame; others block.
-DropPolicy drop_policy_for(const FrameSource& source);
+// --frames N and --seconds S (each optional, N >= 1, S > 0).
+struct LimitOptions {
+  std::uint64_t frames = 0;  // 0: not given
+  double seconds = 0;        // 0: not given
+
+  void add_to(CLI::App& command);
+  SourceLimits limits() const;
+};
 
 struct PipelineRunOptions {
   unsigned frames_in_flight = 2;  // K
@@ -24,34 +32,34 @@ struct PipelineRunOptions {
 
 // How one pipeline run ended and what it measured.
 struct PipelineRun {
-  RunReport report;          // every completed frame, the pipeline's counts, CPU use
-  std::string source_error;  // the source failed mid-stream (device lost, corrupt recording); empty if it ended
-  bool interrupted = false;  // Ctrl-C / SIGTERM stopped it
+  RunReport report;          // every frame handed over, the pipeline's counts, CPU use
+  std::string error;         // the source or on_frame failed (device lost, corrupt recording, disk full)
+  bool interrupted = false;  // a stop was requested (Ctrl-C, SIGTERM)
 };
 
-// Segments the frames of `source` on the pipeline (drop_policy_for(source))
-// and records each completed frame; `on_frame`, if given, sees every completed
-// frame in order, before it is recorded. Ctrl-C stops cleanly: frames in flight
-// complete. An lccp::Error of the source (device lost, corrupt recording) or of
-// `on_frame` ends the run after the frames in flight complete and is returned,
-// not thrown; the counts then come from the frames the source delivered.
+// Segments the frames of `source` on the pipeline and records each frame
+// handed over; `on_frame`, if given, sees each in order before it is recorded.
 PipelineRun run_pipeline(FrameSource& source, const LccpSegmenter& segmenter, const PipelineRunOptions& options,
-                         const StopOnSignal& stop, const std::function<void(const FrameResult&)>& on_frame = {});
+                         std::stop_token stop, const std::function<void(const FrameResult&)>& on_frame = {});
 
+// The exit code of a run whose outputs are written: throws lccp::Error for its
+// error; 130 if a source with an end (not live) was stopped before it; else 0.
+int exit_code(const PipelineRun& run, const FrameSource& source);
+
+// replay and live: config, per-frame outputs, K, limits, --quiet.
 struct StreamOptions {
   ConfigOptions config;
   FrameOutputOptions outputs;
   unsigned frames_in_flight = 2;
+  LimitOptions limits;
   bool quiet = false;
 
   void add_to(CLI::App& command);
 };
 
 // replay and live: run_pipeline, writing the per-frame outputs and
-// DIR/summary.json, then the summary line. A source error is rethrown after
-// the frames before it are written. Returns 0, or 130 if a non-live run was
-// interrupted.
+// DIR/summary.json, then the summary line on stdout; exit_code().
 int run_stream(FrameSource& source, const StreamOptions& options, const std::string& description,
-               const StopOnSignal& stop);
+               std::stop_token stop);
 
 }  // namespace lccp::app

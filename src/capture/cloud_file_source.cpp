@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <atomic>
 
 #include "lccp/capture/cloud_files.hpp"
 #include "lccp/error.hpp"
@@ -37,8 +36,8 @@ class CloudFileSource final : public FrameSource {
  public:
   explicit CloudFileSource(std::vector<std::filesystem::path> files) : files_(std::move(files)) {}
 
-  std::optional<Frame> next() override {
-    if (stop_.load() || next_ >= files_.size()) return std::nullopt;
+  std::optional<Frame> next(std::stop_token stop) override {
+    if (stop.stop_requested() || next_ >= files_.size()) return std::nullopt;
     Frame frame;
     frame.index = next_;
     frame.name = files_[next_].stem().string();
@@ -50,12 +49,10 @@ class CloudFileSource final : public FrameSource {
 
   std::optional<std::uint64_t> frame_count() const override { return files_.size(); }
   bool is_live() const override { return false; }
-  void request_stop() override { stop_.store(true); }
 
  private:
   std::vector<std::filesystem::path> files_;
   std::size_t next_ = 0;
-  std::atomic<bool> stop_{false};
 };
 
 }  // namespace

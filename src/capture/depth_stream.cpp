@@ -81,39 +81,33 @@ void DepthStream::open_depth_stream() {
   }
 }
 
-void DepthStream::open_live(const LiveOptions& options) {
-  initialize_openni();
-  std::string uri = options.uri;
-  if (uri.empty()) {
-    openni::Array<openni::DeviceInfo> devices;
-    openni::OpenNI::enumerateDevices(&devices);
-    if (devices.getSize() == 0) throw Error("no OpenNI2 device found (none attached; give one with --uri)");
-    // A real sensor before our virtual one (drivers load in file-name order).
-    uri = devices[0].getUri();
-    for (int i = devices.getSize() - 1; i >= 0; --i) {
-      if (std::string(devices[i].getUri()).rfind("virtual://", 0) != 0) uri = devices[i].getUri();
-    }
-  }
-  open_device(uri, "cannot open device " + uri);
-  open_depth_stream();
-
-  const openni::Array<openni::VideoMode>& offered = stream_.getSensorInfo().getSupportedVideoModes();
-  std::vector<DepthMode> modes;
-  std::vector<int> mode_index;
+std::vector<OfferedMode> depth_modes(const openni::SensorInfo& sensor) {
+  const openni::Array<openni::VideoMode>& offered = sensor.getSupportedVideoModes();
+  std::vector<OfferedMode> modes;
   for (int i = 0; i < offered.getSize(); ++i) {
     if (!is_depth_format(offered[i].getPixelFormat())) continue;
-    modes.push_back({offered[i].getResolutionX(), offered[i].getResolutionY(), offered[i].getFps()});
-    mode_index.push_back(i);
+    modes.push_back({{offered[i].getResolutionX(), offered[i].getResolutionY(), offered[i].getFps()}, i});
   }
+  return modes;
+}
+
+void DepthStream::open_live(const LiveOptions& options) {
+  const std::string uri = options.uri.empty() ? first_sensor_uri() : options.uri;
+  open_device(uri, "cannot open device " + uri);
+  open_depth_stream();
+  const std::vector<OfferedMode> modes = depth_modes(stream_.getSensorInfo());
   if (modes.empty()) throw Error(uri_ + " offers no millimetre depth mode");
-  const std::size_t chosen = nearest_depth_mode(modes, options.mode);
-  if (stream_.setVideoMode(offered[mode_index[chosen]]) != openni::STATUS_OK) {
-    throw Error("cannot set depth mode " + mode_text(modes[chosen]) + " on " + uri_ + ": " + openni_error());
+  std::vector<DepthMode> choices;
+  for (const OfferedMode& offered : modes) choices.push_back(offered.mode);
+  const OfferedMode& chosen = modes[nearest_depth_mode(choices, options.mode)];
+  const openni::VideoMode& video_mode = stream_.getSensorInfo().getSupportedVideoModes()[chosen.index];
+  if (stream_.setVideoMode(video_mode) != openni::STATUS_OK) {
+    throw Error("cannot set depth mode " + mode_text(chosen.mode) + " on " + uri_ + ": " + openni_error());
   }
-  if (modes[chosen] == options.mode) {
-    spdlog::info("{}: depth {}", uri_, mode_text(modes[chosen]));
+  if (chosen.mode == options.mode) {
+    spdlog::info("{}: depth {}", uri_, mode_text(chosen.mode));
   } else {
-    spdlog::info("{}: depth {} (nearest offered to {})", uri_, mode_text(modes[chosen]), mode_text(options.mode));
+    spdlog::info("{}: depth {} (nearest offered to {})", uri_, mode_text(chosen.mode), mode_text(options.mode));
   }
 }
 
@@ -127,9 +121,9 @@ DepthMode DepthStream::mode() const {
   return {mode.getResolutionX(), mode.getResolutionY(), mode.getFps()};
 }
 
-std::optional<Frame> DepthStream::wait_and_read(int timeout_ms, const std::atomic<bool>& stop) {
+std::optional<Frame> DepthStream::wait_and_read(int timeout_ms, std::stop_token stop) {
   openni::VideoStream* streams[] = {&stream_};
-  for (int waited = 0; waited < timeout_ms && !stop.load() && !lost_.load(); waited += kWaitSliceMs) {
+  for (int waited = 0; waited < timeout_ms && !stop.stop_requested() && !lost_.load(); waited += kWaitSliceMs) {
     int ready = -1;
     if (openni::OpenNI::waitForAnyStream(streams, 1, &ready, kWaitSliceMs) != openni::STATUS_OK) continue;
     openni::VideoFrameRef frame;
@@ -185,3 +179,19 @@ void DepthStream::onDeviceDisconnected(const openni::DeviceInfo* info) {
 }
 
 }  // namespace lccp::detail
+
+namespace lccp {
+
+std::string first_sensor_uri() {
+  initialize_openni();
+  openni::Array<openni::DeviceInfo> devices;
+  openni::OpenNI::enumerateDevices(&devices);
+  for (int i = 0; i < devices.getSize(); ++i) {
+    const std::string uri = devices[i].getUri();
+    if (uri.rfind("virtual://", 0) != 0) return uri;
+  }
+  throw Error("no OpenNI2 depth sensor found (lccp devices lists what OpenNI2 sees; --uri virtual://synthetic "
+              "streams the built-in virtual sensor)");
+}
+
+}  // namespace lccp

@@ -3,7 +3,9 @@
 #include <atomic>
 #include <cstdint>
 #include <optional>
+#include <stop_token>
 #include <string>
+#include <vector>
 
 #include <OpenNI.h>
 
@@ -31,6 +33,14 @@ struct DepthFrameLayout {
 // 1 mm or 100 um units within its data (one line), or nullopt if they can.
 std::optional<std::string> depth_frame_problem(const DepthFrameLayout& frame);
 
+// The millimetre depth modes a sensor offers, each with its index in
+// getSupportedVideoModes() (to set it).
+struct OfferedMode {
+  DepthMode mode;
+  int index = 0;
+};
+std::vector<OfferedMode> depth_modes(const openni::SensorInfo& sensor);
+
 class DepthStream : private openni::OpenNI::DeviceDisconnectedListener {
  public:
   DepthStream() = default;
@@ -48,7 +58,9 @@ class DepthStream : private openni::OpenNI::DeviceDisconnectedListener {
 
   // The next frame (Frame::index = the sensor's frame index), or nullopt after
   // `timeout_ms` without one, on `stop`, or once the device is lost.
-  std::optional<Frame> wait_and_read(int timeout_ms, const std::atomic<bool>& stop);
+  // OpenNI2's waitForAnyStream cannot be woken early, so the wait is cut into
+  // 100 ms slices and `stop` is seen within one slice.
+  std::optional<Frame> wait_and_read(int timeout_ms, std::stop_token stop);
 
   bool lost() const { return lost_.load(); }
   const std::string& uri() const { return uri_; }

@@ -1,10 +1,10 @@
 #include "lccp/capture/openni_sources.hpp"
 
 #include <algorithm>
-#include <atomic>
+#include <condition_variable>
 #include <cmath>
 #include <cstring>
-#include <thread>
+#include <mutex>
 
 #include <OpenNI.h>
 #include <spdlog/spdlog.h>
@@ -17,15 +17,13 @@
 namespace lccp {
 namespace {
 
-using Millis = std::chrono::milliseconds;
-
-// Sleeps until `deadline` in short slices, returning early (false) on stop.
-bool sleep_until(Clock::time_point deadline, const std::atomic<bool>& stop) {
-  while (Clock::now() < deadline) {
-    if (stop.load()) return false;
-    std::this_thread::sleep_for(std::min<Clock::duration>(deadline - Clock::now(), Millis(20)));
-  }
-  return !stop.load();
+// Sleeps until `deadline`; a stop request wakes it at once (false).
+bool sleep_until(Clock::time_point deadline, std::stop_token stop) {
+  std::mutex mutex;
+  std::condition_variable_any woken;
+  std::unique_lock lock(mutex);
+  woken.wait_until(lock, stop, deadline, [] { return false; });
+  return !stop.stop_requested();
 }
 
 class RecordingSource final : public FrameSource {
@@ -45,34 +43,32 @@ class RecordingSource final : public FrameSource {
     openni::PlaybackControl* playback = stream_.device().getPlaybackControl();
     if (playback == nullptr) throw Error(path.string() + " is not an .oni recording");
     playback->setRepeatEnabled(false);
-    playback->setSpeed(-1.0f);  // manual: each frame released on request, none dropped (GUIDE 4)
+    playback->setSpeed(-1.0f);  // manual: each frame released on request, none dropped
     stream_.open_depth_stream();
     total_ = static_cast<std::uint64_t>(std::max(0, playback->getNumberOfFrames(stream_.stream())));
     if (total_ != facts.frames) {
       throw Error(path.string() + ": OpenNI2 counts " + std::to_string(total_) + " depth frames where the file holds " +
                   std::to_string(facts.frames));
     }
-    if (options_.max_frames) total_ = std::min(total_, *options_.max_frames);
     stream_.start();
   }
 
-  std::optional<Frame> next() override {
+  std::optional<Frame> next(std::stop_token stop) override {
     if (delivered_ >= total_) return std::nullopt;
-    std::optional<Frame> frame = stream_.wait_and_read(options_.stall_timeout_ms, stop_);
+    std::optional<Frame> frame = stream_.wait_and_read(options_.stall_timeout_ms, stop);
     if (!frame) {
-      if (stop_.load()) return std::nullopt;
+      if (stop.stop_requested()) return std::nullopt;
       throw Error("recording " + path_.string() + " ended after " + std::to_string(delivered_) + " of " +
                   std::to_string(total_) + " frames (truncated or corrupt?)");
     }
     frame->index = delivered_++;
-    if (options_.realtime && !pace(*frame)) return std::nullopt;
+    if (options_.realtime && !pace(*frame, stop)) return std::nullopt;
     frame->captured = Clock::now();
     return frame;
   }
 
   std::optional<std::uint64_t> frame_count() const override { return total_; }
   bool is_live() const override { return options_.realtime; }
-  void request_stop() override { stop_.store(true); }
 
  private:
   static void check_recording_path(const std::filesystem::path& path) {
@@ -83,13 +79,13 @@ class RecordingSource final : public FrameSource {
   }
 
   // Waits until the frame is due by the recording's clock (a live sensor's pace).
-  bool pace(const Frame& frame) {
+  bool pace(const Frame& frame, std::stop_token stop) {
     if (!first_timestamp_us_) {
       first_timestamp_us_ = frame.timestamp_us;
       replay_start_ = Clock::now();
     }
     const auto offset = std::chrono::microseconds(frame.timestamp_us - std::min(frame.timestamp_us, *first_timestamp_us_));
-    return sleep_until(replay_start_ + offset, stop_);
+    return sleep_until(replay_start_ + offset, std::move(stop));
   }
 
   std::filesystem::path path_;
@@ -99,7 +95,6 @@ class RecordingSource final : public FrameSource {
   std::uint64_t delivered_ = 0;
   std::optional<std::uint64_t> first_timestamp_us_;
   Clock::time_point replay_start_{};
-  std::atomic<bool> stop_{false};
 };
 
 class DeviceSource final : public FrameSource {
@@ -107,20 +102,14 @@ class DeviceSource final : public FrameSource {
   explicit DeviceSource(const LiveOptions& options) : options_(options) {
     stream_.open_live(options_);
     stream_.start();
-    started_ = Clock::now();
   }
 
-  std::optional<Frame> next() override {
-    if (options_.max_frames && delivered_ >= *options_.max_frames) return std::nullopt;
-    if (options_.max_seconds &&
-        std::chrono::duration<double>(Clock::now() - started_).count() >= *options_.max_seconds) {
-      return std::nullopt;
-    }
+  std::optional<Frame> next(std::stop_token stop) override {
     const int timeout_ms = delivered_ == 0 ? std::max(options_.stall_timeout_ms, options_.first_frame_timeout_ms)
                                            : options_.stall_timeout_ms;
-    std::optional<Frame> frame = stream_.wait_and_read(timeout_ms, stop_);
+    std::optional<Frame> frame = stream_.wait_and_read(timeout_ms, stop);
     if (!frame) {
-      if (stop_.load()) return std::nullopt;
+      if (stop.stop_requested()) return std::nullopt;
       const std::string after = " after " + std::to_string(delivered_) + " frames";
       if (stream_.lost()) throw Error("device " + stream_.uri() + " disconnected" + after);
       throw Error("device " + stream_.uri() + " stopped sending frames" + after + " (no frame for " +
@@ -131,16 +120,13 @@ class DeviceSource final : public FrameSource {
     return frame;
   }
 
-  std::optional<std::uint64_t> frame_count() const override { return options_.max_frames; }
+  std::optional<std::uint64_t> frame_count() const override { return std::nullopt; }
   bool is_live() const override { return true; }
-  void request_stop() override { stop_.store(true); }
 
  private:
   LiveOptions options_;
   detail::DepthStream stream_;
-  Clock::time_point started_{};
   std::uint64_t delivered_ = 0;
-  std::atomic<bool> stop_{false};
 };
 
 }  // namespace
@@ -151,6 +137,27 @@ std::unique_ptr<FrameSource> open_recording(const std::filesystem::path& path, c
 
 std::unique_ptr<FrameSource> open_device(const LiveOptions& options) {
   return std::make_unique<DeviceSource>(options);
+}
+
+std::vector<DeviceDescription> list_devices() {
+  initialize_openni();
+  openni::Array<openni::DeviceInfo> devices;
+  openni::OpenNI::enumerateDevices(&devices);
+  std::vector<DeviceDescription> out;
+  for (int i = 0; i < devices.getSize(); ++i) {
+    DeviceDescription description{devices[i].getUri(), devices[i].getVendor(), devices[i].getName(), {}};
+    openni::Device device;
+    if (device.open(devices[i].getUri()) == openni::STATUS_OK) {
+      if (const openni::SensorInfo* depth = device.getSensorInfo(openni::SENSOR_DEPTH)) {
+        for (const detail::OfferedMode& offered : detail::depth_modes(*depth)) {
+          description.depth_modes.push_back(offered.mode);
+        }
+      }
+      device.close();
+    }
+    out.push_back(std::move(description));
+  }
+  return out;
 }
 
 std::size_t nearest_depth_mode(const std::vector<DepthMode>& offered, const DepthMode& wanted) {

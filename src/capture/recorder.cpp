@@ -136,14 +136,14 @@ std::uint64_t finish_recording(const std::filesystem::path& path, std::uint64_t 
 // How long the recorder may lag behind the frames we have read before we give up.
 constexpr auto kRecorderCatchUp = std::chrono::seconds(10);
 
-// Reads frames until the recorder has written `frames` of them, `stop` is set, the
+// Reads frames until the recorder has written `frames` of them, a stop is requested, the
 // device is lost or stalls, or the recorder lags kRecorderCatchUp behind. OpenNI2
 // hands every frame to the recorder before readers can see it (VideoStream::
 // stream_NewFrame), but the recorder writes on its own thread, and on a loaded
 // machine we may read a frame late or not at all, so the file is what we count.
 // Returns the frames read, counted by the sensor's frame index.
 std::uint64_t read_until_written(detail::DepthStream& stream, const std::filesystem::path& partial,
-                                 std::uint64_t frames, const LiveOptions& options, const std::atomic<bool>& stop) {
+                                 std::uint64_t frames, const LiveOptions& options, std::stop_token stop) {
   std::optional<std::uint64_t> first_index;
   std::optional<std::chrono::steady_clock::time_point> read_enough;
   std::uint64_t read = 0;
@@ -165,7 +165,7 @@ std::uint64_t read_until_written(detail::DepthStream& stream, const std::filesys
 }  // namespace
 
 RecordStats record_device(const LiveOptions& options, const std::filesystem::path& output, std::uint64_t frames,
-                          const std::atomic<bool>& stop) {
+                          std::stop_token stop) {
   if (output.extension() != ".oni") throw Error("recording " + output.string() + " must have the .oni suffix");
   detail::DepthStream stream;
   stream.open_live(options);
@@ -190,7 +190,7 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
   }
   // Exactly `frames` frames: the recorder may have written more than asked for.
   const std::uint64_t written = oni::finish_recording(partial, frames);
-  if (written != frames && (written > frames || !stop.load())) {
+  if (written != frames && (written > frames || !stop.stop_requested())) {
     const std::string after = " after " + std::to_string(written) + " of " + std::to_string(frames) + " frames";
     if (written < frames && stream.lost()) throw Error("device " + stream.uri() + " disconnected" + after);
     if (written < frames && read < frames) throw Error("device " + stream.uri() + " stopped sending frames" + after);
@@ -204,7 +204,7 @@ RecordStats record_device(const LiveOptions& options, const std::filesystem::pat
   {
     const auto replay = open_recording(partial);
     stats.frames = replay->frame_count().value_or(0);
-    replays = replay->next().has_value();
+    replays = replay->next(std::stop_token{}).has_value();
   }
   if (!replays || stats.frames != written) {
     throw Error("the recording of " + stream.uri() + " does not replay its " + std::to_string(written) +

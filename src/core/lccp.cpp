@@ -13,20 +13,6 @@
 namespace lccp {
 namespace {
 
-// Milliseconds since the previous lap.
-class LapTimer {
- public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
-    last_ = now;
-    return ms;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
 Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
                     const std::vector<std::uint32_t>& segment_of_supervoxel) {
   Labels labels(grid.voxel_of_point.size(), 0);
@@ -37,58 +23,43 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
   return labels;
 }
 
+// Stage 6 (A.4): small segments merged, segments numbered 1..K by size, and
+// every point labelled through its voxel's supervoxel.
+void filter_and_label(SegmentationWork& w, std::uint32_t n_filter) {
+  merge_small_segments(w.segment_of_supervoxel, w.edges, n_filter);
+  w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
+  w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel);
+  w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
+  w.result.supervoxel_count = static_cast<std::uint32_t>(w.supervoxels.size());
+}
+
 }  // namespace
 
 LccpSegmenter::LccpSegmenter(const LccpConfig& config) : config_(config) { validate(config_); }
 
 SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const {
-  StageTimes times;
-  return label(grow(voxelize_with_normals(cloud, times), times), times);
+  SegmentationWork work(cloud);
+  for (const StageInfo& stage : kStages) run_stage(stage.stage, work);
+  return std::move(work.result);
 }
 
-VoxelizedCloud LccpSegmenter::voxelize_with_normals(const PointCloud& cloud, StageTimes& times) const {
-  LapTimer timer;
-  VoxelizedCloud out;
-  out.grid = voxelize(cloud, config_.voxels, config_.limits);
-  times.voxelize_ms = timer.lap();
-  out.normals = estimate_voxel_normals(out.grid);
-  times.normals_ms = timer.lap();
-  return out;
-}
-
-GrownSupervoxels LccpSegmenter::grow(VoxelizedCloud voxels, StageTimes& times) const {
-  LapTimer timer;
+void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
+  const auto start = std::chrono::steady_clock::now();
   const float v = config_.voxels.voxel_size_m;
-  const std::vector<std::uint32_t> seeds = select_seeds(voxels.grid, config_.supervoxels, v);
-  times.seeds_ms = timer.lap();
-  Supervoxels supervoxels = grow_supervoxels(voxels.grid, voxels.normals, seeds, config_.supervoxels, v);
-  times.growth_ms = timer.lap();
-  return {std::move(voxels), std::move(supervoxels)};
-}
-
-SegmentationResult LccpSegmenter::label(const GrownSupervoxels& grown, const StageTimes& times) const {
-  SegmentationResult result;
-  result.times = times;
-  StageTimes& t = result.times;
-  LapTimer timer;
-  const VoxelGrid& grid = grown.voxels.grid;
-  const Supervoxels& supervoxels = grown.supervoxels;
-
-  const std::vector<Edge> edges = supervoxel_adjacency(grid, supervoxels);
-  t.adjacency_ms = timer.lap();
-  const std::vector<std::uint8_t> convex =
-      classify_edges(edges, supervoxels.centroids, supervoxels.normals, config_.convexity);
-  t.classify_ms = timer.lap();
-  std::vector<std::uint32_t> segments = convex_components(supervoxels.size(), edges, convex);
-  t.label_ms = timer.lap();
-  merge_small_segments(segments, edges, config_.filter.n_filter_supervoxels);
-  result.segment_count = relabel_by_size(segments);
-  result.labels = label_points(grid, supervoxels, segments);
-  t.filter_ms = timer.lap();
-
-  result.voxel_count = static_cast<std::uint32_t>(grid.size());
-  result.supervoxel_count = static_cast<std::uint32_t>(supervoxels.size());
-  return result;
+  const SupervoxelConfig& sv = config_.supervoxels;
+  switch (stage) {
+    case Stage::voxelize: w.grid = voxelize(*w.cloud, config_.voxels, config_.limits); break;
+    case Stage::normals: w.normals = estimate_voxel_normals(w.grid); break;
+    case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;
+    case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, sv, v); break;
+    case Stage::adjacency: w.edges = supervoxel_adjacency(w.grid, w.supervoxels); break;
+    case Stage::classify:
+      w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity);
+      break;
+    case Stage::components: w.segment_of_supervoxel = convex_components(w.supervoxels.size(), w.edges, w.convex); break;
+    case Stage::filter: filter_and_label(w, config_.filter.n_filter_supervoxels); break;
+  }
+  w.result.times[stage] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace lccp

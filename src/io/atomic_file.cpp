@@ -148,4 +148,12 @@ void write_files_together(std::span<const FileBytes> files) {
   for (PendingFile& file : pending) file.commit();
 }
 
+void create_output_folder(const std::filesystem::path& path) {
+  std::error_code error;
+  std::filesystem::create_directories(path, error);
+  if (std::filesystem::is_directory(path)) return;
+  throw Error("cannot create output folder " + path.string() + ": " +
+              (error ? error.message() : std::string("a file of that name exists")));
+}
+
 }  // namespace lccp

@@ -24,16 +24,14 @@ class FrameAdmission {
   // Puts the frame into the graph (never blocks).
   using Enter = std::function<void(Frame frame, std::uint64_t sequence)>;
 
-  // `closed` says that waiting frames may no longer enter (stop).
-  FrameAdmission(unsigned slots, std::function<bool()> closed, Enter enter)
-      : free_(slots), closed_(std::move(closed)), enter_(std::move(enter)) {}
+  FrameAdmission(unsigned slots, Enter enter) : free_(slots), enter_(std::move(enter)) {}
 
   // DropPolicy::block: waits for a free slot, then lets the frame in. Returns
-  // false, dropping the frame, only after abort().
+  // false, dropping the frame, after close().
   bool enter_when_free(Frame frame) {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] { return free_ > 0 || aborted_; });
-    if (aborted_) {
+    changed_.wait(lock, [&] { return free_ > 0 || closed_; });
+    if (closed_) {
       ++dropped_;
       return false;
     }
@@ -61,16 +59,18 @@ class FrameAdmission {
     admit_waiting(lock);
   }
 
-  // Wakes a waiting enter_when_free() for good (the graph failed).
-  void abort() {
+  // No frame enters from now on (a stop): a waiting enter_when_free() returns
+  // false, and a frame waiting under drop_oldest stays out.
+  void close() {
     {
       std::lock_guard lock(mutex_);
-      aborted_ = true;
+      closed_ = true;
     }
     changed_.notify_all();
   }
 
-  // Drops the frame still waiting (run() has ended) and returns every drop so far.
+  // Drops the frame still waiting (run() has ended) and returns every drop so far:
+  // frames replaced under drop_oldest, refused after close(), and this one.
   std::uint64_t drop_waiting() {
     std::lock_guard lock(mutex_);
     if (waiting_) ++dropped_;
@@ -80,7 +80,7 @@ class FrameAdmission {
 
  private:
   void admit_waiting(std::unique_lock<std::mutex>& lock) {
-    if (!waiting_ || free_ == 0 || closed_()) return;
+    if (!waiting_ || free_ == 0 || closed_) return;
     --free_;
     Frame frame = std::move(*waiting_);
     waiting_.reset();
@@ -95,8 +95,7 @@ class FrameAdmission {
   std::uint64_t next_sequence_ = 0;
   std::optional<Frame> waiting_;
   std::uint64_t dropped_ = 0;
-  bool aborted_ = false;
-  std::function<bool()> closed_;
+  bool closed_ = false;
   Enter enter_;
 };
 

@@ -1,25 +1,23 @@
 // The streaming pipeline as a oneTBB flow graph:
 //
 //   capture thread --(admission: K slots)--> entry (async_node gateway)
-//     -> limiter(K) -> back-projection -> voxelize + normals -> supervoxels
-//     -> classify + label + filter -> sequencer -> deliver (serial: the sink)
-//     -> limiter decrement, then the slot goes back to admission
+//     -> back-projection -> one node per kPipelineNodes entry (kStages grouped by
+//        StageInfo::node) -> sequencer -> deliver (serial: the sink)
+//     -> the slot goes back to admission
 //
 // The source is read on a thread of its own, never on a TBB thread: a blocking
 // next() (a sensor between frames) would otherwise hold a worker that the
 // frames in flight need, and with one thread stall them until the next frame.
+// Admission is the one bound on frames in flight.
 #include "lccp/pipeline/pipeline.hpp"
 
-#include <atomic>
 #include <chrono>
-#include <cstdint>
 #include <exception>
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
-#include <utility>
+#include <vector>
 
 #include <tbb/flow_graph.h>
 #include <tbb/task_arena.h>
@@ -33,72 +31,73 @@ namespace {
 
 namespace flow = tbb::flow;
 
-// One frame on its way through the graph. Each stage moves the previous
-// stage's output on and frees it, so clouds are never copied.
+// One frame on its way through the graph. The stages move their results along
+// in `work`, so clouds are never copied.
 struct FrameInFlight {
   std::uint64_t sequence = 0;  // 0, 1, 2, ... in the order frames entered the graph
   FrameResult result;
-  StageTimes times;
-  std::optional<VoxelizedCloud> voxels;
-  std::optional<GrownSupervoxels> grown;
+  std::optional<SegmentationWork> work;  // over result.frame.cloud, once it exists
 };
 using Message = std::shared_ptr<FrameInFlight>;
+using Entry = flow::async_node<flow::continue_msg, Message>;
+using Node = flow::function_node<Message, Message>;
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Runs one stage of a frame unless an earlier stage failed; an exception
-// becomes the frame's error instead of cancelling the graph. Isolated: a
-// thread waiting inside the stage's parallel loops does not start another
-// frame's stage, or the user's sink, on top of it.
-template <typename Stage>
-void run_stage(FrameInFlight& frame, Stage&& stage) {
-  if (!frame.result.error.empty()) return;
+// The message of what `f` threw, or nullopt if it returned.
+template <typename F>
+std::optional<std::string> error_of(F&& f) {
   try {
-    tbb::this_task_arena::isolate(stage);
+    f();
+    return std::nullopt;
   } catch (const std::exception& e) {
-    frame.result.error = *e.what() ? e.what() : "unknown error";
+    return *e.what() ? e.what() : "unknown error";
   } catch (...) {
-    frame.result.error = "unknown error";
+    return "unknown error";
   }
 }
 
-// The first exception of one kind (source or sink), kept for run() to rethrow.
-class ErrorSlot {
- public:
-  void set(std::exception_ptr error) {
-    std::lock_guard lock(mutex_);
-    if (!error_) error_ = std::move(error);
-  }
-  std::exception_ptr get() const {
-    std::lock_guard lock(mutex_);
-    return error_;
-  }
+// Runs one step of a frame unless an earlier one failed; an exception becomes
+// the frame's error instead of cancelling the graph. Isolated: a thread
+// waiting inside the stage's parallel loops does not start another frame's
+// stage, or the user's sink, on top of it.
+template <typename Step>
+void run_guarded(FrameInFlight& f, Step&& step) {
+  if (!f.result.error.empty()) return;
+  if (auto error = error_of([&] { tbb::this_task_arena::isolate(step); })) f.result.error = std::move(*error);
+}
 
- private:
-  mutable std::mutex mutex_;
-  std::exception_ptr error_;
-};
-
-// Counts the frames taken from the source and the source's own lost frames:
-// index a followed by b > a + 1 means b - a - 1 frames never arrived. Used by
-// the capture thread only, read after it has been joined.
-class ReceivedFrames {
- public:
-  void count(std::uint64_t index) {
-    ++received_;
-    if (last_index_ && index > *last_index_ + 1) lost_ += index - *last_index_ - 1;
-    last_index_ = index;
+Message back_project_frame(const Message& message) {
+  FrameInFlight& f = *message;
+  Frame& frame = f.result.frame;
+  if (frame.depth) {
+    const Clock::time_point begin = Clock::now();
+    run_guarded(f, [&] {
+      frame.cloud = back_project(*frame.depth);
+      frame.depth.reset();
+    });
+    f.result.back_projection_ms = ms_since(begin);
   }
-  std::uint64_t received() const { return received_; }
-  std::uint64_t lost() const { return lost_; }
+  if (f.result.error.empty()) f.work.emplace(frame.cloud);
+  return message;
+}
 
- private:
-  std::optional<std::uint64_t> last_index_;
-  std::uint64_t received_ = 0;
-  std::uint64_t lost_ = 0;
-};
+// After the last stage: the result leaves `work`, which is freed. A failed
+// frame has no segment: every point unlabelled, the stage times kept.
+void finish_frame(FrameInFlight& f) {
+  SegmentationResult& segmentation = f.result.segmentation;
+  if (f.work) segmentation = std::move(f.work->result);
+  f.work.reset();
+  if (!f.result.error.empty()) {
+    const StageTimes times = segmentation.times;
+    segmentation = SegmentationResult{};
+    segmentation.labels.assign(f.result.frame.cloud.size(), 0);
+    segmentation.times = times;
+  }
+  f.result.labels_ready = Clock::now();
+}
 
 // Calls f when the scope ends, however it ends.
 template <typename F>
@@ -113,30 +112,158 @@ class OnExit {
   F f_;
 };
 
-using Entry = flow::async_node<flow::continue_msg, Message>;
+// One run(): the graph, the capture thread's loop, the counts and the first error.
+class Run {
+ public:
+  Run(const LccpSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
+      unsigned frames_in_flight, std::stop_token stop);
+  PipelineOutcome execute();
 
-// The capture thread: reads the source outside the TBB threads (next() may
-// block for a sensor's next frame) and hands every frame to the admission
-// gate, until the source ends or fails or `halted` says no more frames are
-// wanted. The graph stays busy until this returns.
-void capture_frames(FrameSource& source, DropPolicy policy, const std::function<bool()>& halted,
-                    ReceivedFrames& received, ErrorSlot& source_error, detail::FrameAdmission& admission,
-                    Entry::gateway_type& gateway) {
-  const OnExit done([&] { gateway.release_wait(); });
-  try {
-    while (!halted()) {
-      std::optional<Frame> frame = source.next();
-      if (!frame) break;
-      received.count(frame->index);
-      if (policy == DropPolicy::drop_oldest) {
-        admission.enter_or_wait(std::move(*frame));
-      } else if (!admission.enter_when_free(std::move(*frame))) {
-        break;
-      }
-    }
-  } catch (...) {
-    source_error.set(std::current_exception());
+ private:
+  Message run_node(unsigned node, const Message& message) const;
+  void capture_frames();
+  void take(Frame frame);
+  void deliver(const Message& message);
+  void fail(std::string error);
+
+  const LccpSegmenter& segmenter_;
+  FrameSource& source_;
+  const std::function<void(FrameResult&)>& sink_;
+  const DropPolicy policy_;
+  std::stop_source halt_;  // no more frames: the caller's stop or a sink error
+  detail::FrameAdmission admission_;
+  flow::graph graph_;
+  Entry entry_;
+  Node back_projection_;
+  std::vector<std::unique_ptr<Node>> stage_nodes_;  // one per kPipelineNodes entry
+  flow::sequencer_node<Message> in_order_;
+  flow::function_node<Message> deliver_;
+  std::stop_callback<std::function<void()>> close_on_halt_;
+  std::stop_callback<std::function<void()>> halt_on_stop_;
+
+  std::mutex error_mutex_;
+  std::string error_;                      // the first error, under error_mutex_
+  std::optional<std::uint64_t> last_index_;  // the capture thread's
+  PipelineStats stats_;                    // received, gaps: capture thread; the rest: deliver_
+  bool sink_failed_ = false;               // deliver_ only (a serial node)
+};
+
+Run::Run(const LccpSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
+         unsigned frames_in_flight, std::stop_token stop)
+    : segmenter_(segmenter),
+      source_(source),
+      sink_(sink),
+      policy_(drop_policy_for(source)),
+      admission_(frames_in_flight,
+                 [this](Frame frame, std::uint64_t sequence) {
+                   auto message = std::make_shared<FrameInFlight>();
+                   message->sequence = sequence;
+                   message->result.frame = std::move(frame);
+                   // Admission holds a slot for it: the graph takes it at once.
+                   if (!entry_.gateway().try_put(message)) throw Error("pipeline: the graph refused a frame");
+                 }),
+      // Frames come in through this node's gateway, put by the capture thread (or
+      // by deliver_, for a frame waiting under drop_oldest). Its body never runs.
+      entry_(graph_, flow::serial, [](const flow::continue_msg&, Entry::gateway_type&) {}),
+      back_projection_(graph_, flow::unlimited, back_project_frame),
+      in_order_(graph_, [](const Message& message) { return message->sequence; }),
+      deliver_(graph_, flow::serial, [this](const Message& message) {
+        deliver(message);
+        return flow::continue_msg{};
+      }),
+      close_on_halt_(halt_.get_token(), [this] { admission_.close(); }),
+      halt_on_stop_(std::move(stop), [this] { halt_.request_stop(); }) {
+  flow::make_edge(entry_, back_projection_);
+  flow::sender<Message>* previous = &back_projection_;
+  for (unsigned node = 0; node < kPipelineNodes.size(); ++node) {
+    stage_nodes_.push_back(std::make_unique<Node>(
+        graph_, flow::unlimited, [this, node](const Message& message) { return run_node(node, message); }));
+    flow::make_edge(*previous, *stage_nodes_.back());
+    previous = stage_nodes_.back().get();
   }
+  flow::make_edge(*previous, in_order_);
+  flow::make_edge(in_order_, deliver_);
+}
+
+Message Run::run_node(unsigned node, const Message& message) const {
+  FrameInFlight& f = *message;
+  for (const StageInfo& info : kStages) {
+    if (info.node == node) run_guarded(f, [&] { segmenter_.run_stage(info.stage, *f.work); });
+  }
+  if (node + 1 == kPipelineNodes.size()) finish_frame(f);
+  return message;
+}
+
+void Run::fail(std::string error) {
+  std::lock_guard lock(error_mutex_);
+  if (error_.empty()) error_ = std::move(error);
+}
+
+// The capture thread: reads the source until it ends or fails or a halt, and
+// hands every frame to admission. The graph stays busy until this returns.
+void Run::capture_frames() {
+  const OnExit done([&] { entry_.gateway().release_wait(); });
+  const std::stop_token halted = halt_.get_token();
+  const auto error = error_of([&] {
+    while (!halted.stop_requested()) {
+      std::optional<Frame> frame = source_.next(halted);
+      if (!frame) return;
+      take(std::move(*frame));
+    }
+  });
+  if (error) fail(*error);  // the frames taken so far, a waiting one included, still complete
+}
+
+void Run::take(Frame frame) {
+  ++stats_.frames_received;
+  if (last_index_ && frame.index > *last_index_ + 1) stats_.sensor_gaps += frame.index - *last_index_ - 1;
+  last_index_ = frame.index;
+  if (policy_ == DropPolicy::drop_oldest) {
+    admission_.enter_or_wait(std::move(frame));
+  } else {
+    admission_.enter_when_free(std::move(frame));  // refused (counted) once closed
+  }
+}
+
+void Run::deliver(const Message& message) {
+  FrameResult& result = message->result;
+  const bool stage_failed = !result.error.empty();  // before the sink, which may move the result
+  if (sink_failed_) {
+    ++stats_.frames_dropped;
+  } else if (auto error = error_of([&] { sink_(result); })) {
+    ++stats_.frames_failed;
+    sink_failed_ = true;
+    fail(std::move(*error));
+    halt_.request_stop();  // no more frames: the sink cannot take them
+  } else {
+    ++(stage_failed ? stats_.frames_failed : stats_.frames_completed);
+  }
+  result = FrameResult{};  // free the frame now, not when the last copy of the pointer goes
+  admission_.release();
+}
+
+PipelineOutcome Run::execute() {
+  const Clock::time_point start = Clock::now();
+  entry_.gateway().reserve_wait();  // released by the capture thread when it ends
+  std::thread capture;
+  try {
+    capture = std::thread([this] { capture_frames(); });
+  } catch (...) {
+    entry_.gateway().release_wait();
+    throw;
+  }
+  const OnExit join_if_failed([&] {  // only if wait_for_all() threw
+    if (!capture.joinable()) return;
+    halt_.request_stop();
+    capture.join();
+  });
+  graph_.wait_for_all();
+  capture.join();
+  // Joined: a frame still waiting at the end never entered.
+  stats_.frames_dropped += stats_.sensor_gaps + admission_.drop_waiting();
+  stats_.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::lock_guard lock(error_mutex_);
+  return {stats_, error_};
 }
 
 }  // namespace
@@ -145,146 +272,10 @@ Pipeline::Pipeline(const LccpSegmenter& segmenter, PipelineConfig config) : segm
   if (config_.frames_in_flight == 0) throw Error("frames_in_flight must be at least 1");
 }
 
-void Pipeline::stop() {
-  stop_requested_.store(true);
-  stops_in_progress_.fetch_add(1);
-  if (FrameSource* source = running_source_.load()) source->request_stop();
-  stops_in_progress_.fetch_sub(1);
-}
-
-PipelineStats Pipeline::run(FrameSource& source, const std::function<void(FrameResult&)>& sink) {
-  const Clock::time_point start = Clock::now();
-  // stop() reaches this source until run() returns; a stop() that came before
-  // run() is honoured, and consumed when run() returns.
-  running_source_.store(&source);
-  const OnExit unregister([&] {
-    running_source_.store(nullptr);
-    while (stops_in_progress_.load() != 0) std::this_thread::yield();
-    stop_requested_.store(false);
-  });
-
-  ReceivedFrames received;
-  std::atomic<std::uint64_t> completed{0};
-  std::uint64_t dropped = 0;
-  ErrorSlot source_error;
-  ErrorSlot sink_error;
-  std::atomic<bool> sink_failed{false};
-  const std::function<bool()> halted = [&] { return stop_requested_.load() || sink_failed.load(); };
-  {
-    flow::graph graph;
-
-    // Frames come in through this node's gateway, put by the capture thread
-    // (or by the sink, for a frame waiting under drop_oldest): no TBB thread
-    // ever waits for the source. Its body is never called.
-    Entry entry(graph, flow::serial, [](const flow::continue_msg&, Entry::gateway_type&) {});
-
-    flow::limiter_node<Message> in_flight(graph, config_.frames_in_flight);
-
-    flow::function_node<Message, Message> back_projection(graph, flow::unlimited, [](const Message& message) {
-      FrameInFlight& f = *message;
-      Frame& frame = f.result.frame;
-      if (!frame.depth) return message;
-      const Clock::time_point begin = Clock::now();
-      run_stage(f, [&] {
-        frame.cloud = back_project(*frame.depth);
-        frame.depth.reset();
-      });
-      f.result.back_projection_ms = ms_since(begin);
-      return message;
-    });
-
-    flow::function_node<Message, Message> voxelize(graph, flow::unlimited, [this](const Message& message) {
-      FrameInFlight& f = *message;
-      run_stage(f, [&] { f.voxels = segmenter_.voxelize_with_normals(f.result.frame.cloud, f.times); });
-      return message;
-    });
-
-    flow::function_node<Message, Message> supervoxels(graph, flow::unlimited, [this](const Message& message) {
-      FrameInFlight& f = *message;
-      run_stage(f, [&] { f.grown = segmenter_.grow(std::move(*f.voxels), f.times); });
-      f.voxels.reset();
-      return message;
-    });
-
-    flow::function_node<Message, Message> label(graph, flow::unlimited, [this](const Message& message) {
-      FrameInFlight& f = *message;
-      SegmentationResult& segmentation = f.result.segmentation;
-      run_stage(f, [&] { segmentation = segmenter_.label(*f.grown, f.times); });
-      f.grown.reset();
-      if (!f.result.error.empty()) {  // a failed frame: no segment, every point unlabelled
-        segmentation = SegmentationResult{};
-        segmentation.labels.assign(f.result.frame.cloud.size(), 0);
-        segmentation.times = f.times;
-      }
-      f.result.labels_ready = Clock::now();
-      return message;
-    });
-
-    flow::sequencer_node<Message> in_order(graph, [](const Message& message) { return message->sequence; });
-
-    detail::FrameAdmission admission(config_.frames_in_flight, halted, [&](Frame frame, std::uint64_t sequence) {
-      auto message = std::make_shared<FrameInFlight>();
-      message->sequence = sequence;
-      message->result.frame = std::move(frame);
-      // Admission holds a slot for it, so the limiter has room.
-      if (!entry.gateway().try_put(message)) throw Error("pipeline: the limiter refused an admitted frame");
-    });
-
-    flow::function_node<Message> deliver(graph, flow::serial, [&](const Message& message) {
-      if (!sink_failed.load()) {
-        try {
-          sink(message->result);
-          completed.fetch_add(1, std::memory_order_relaxed);
-        } catch (...) {
-          sink_error.set(std::current_exception());
-          sink_failed.store(true);
-          source.request_stop();  // unblocks a waiting next(): no more frames are taken
-        }
-      }
-      message->result = FrameResult{};  // free the frame now, not when the last copy of the pointer goes
-      // The limiter first, then the gate: a frame the gate lets in always finds room.
-      in_flight.decrementer().try_put(flow::continue_msg{});
-      admission.release();
-      return flow::continue_msg{};
-    });
-
-    flow::make_edge(entry, in_flight);
-    flow::make_edge(in_flight, back_projection);
-    flow::make_edge(back_projection, voxelize);
-    flow::make_edge(voxelize, supervoxels);
-    flow::make_edge(supervoxels, label);
-    flow::make_edge(label, in_order);
-    flow::make_edge(in_order, deliver);
-
-    entry.gateway().reserve_wait();  // released by the capture thread when it ends
-    std::thread capture;
-    try {
-      capture = std::thread(capture_frames, std::ref(source), config_.drop_policy, std::cref(halted),
-                            std::ref(received), std::ref(source_error), std::ref(admission),
-                            std::ref(entry.gateway()));
-    } catch (...) {
-      entry.gateway().release_wait();
-      throw;
-    }
-    const OnExit join_if_failed([&] {  // only if wait_for_all() threw
-      if (!capture.joinable()) return;
-      admission.abort();
-      source.request_stop();
-      capture.join();
-    });
-    graph.wait_for_all();
-    capture.join();
-    dropped = admission.drop_waiting();  // a frame still waiting after stop() never entered
-  }
-
-  PipelineStats stats;
-  stats.frames_received = received.received();
-  stats.frames_completed = completed.load();
-  stats.frames_dropped = dropped + received.lost();
-  stats.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (std::exception_ptr error = source_error.get()) std::rethrow_exception(error);
-  if (std::exception_ptr error = sink_error.get()) std::rethrow_exception(error);
-  return stats;
+PipelineOutcome Pipeline::run(FrameSource& source, const std::function<void(FrameResult&)>& sink,
+                              std::stop_token stop) const {
+  Run run(segmenter_, source, sink, config_.frames_in_flight, std::move(stop));
+  return run.execute();
 }
 
 }  // namespace lccp

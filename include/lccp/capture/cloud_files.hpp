@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "lccp/capture/frame_source.hpp"
+#include "lccp/frame_source.hpp"
 
 namespace lccp {
 

@@ -1,26 +1,27 @@
 #pragma once
 // Frame sources through OpenNI2: .oni recordings and live devices.
-#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <vector>
 
-#include "lccp/capture/frame_source.hpp"
+#include "lccp/frame_source.hpp"
 
 namespace lccp {
 
 struct ReplayOptions {
   bool realtime = false;                   // pace frames by the recording's timestamps
-  std::optional<std::uint64_t> max_frames; // stop after this many frames
   int stall_timeout_ms = 5000;             // no frame for this long before the end: corrupt file
 };
 
 // Every depth frame of an .oni recording, in order, none dropped (OpenNI2's
-// manual playback mode); the end of the file is detected by frame count, never
-// by blocking (GUIDE 4). Frame::index counts from 0. Throws lccp::Error naming
+// manual playback mode, PlaybackControl::setSpeed(-1)); the end of the file is
+// detected by the frame count, never by blocking: in manual mode OpenNI2 sends
+// no end-of-stream event, a read after the last frame would wait forever.
+// Frame::index counts from 0. Throws lccp::Error naming
 // the file when it is missing, not an .oni recording, or has no depth stream;
 // next() throws when the recording stops short of its frame count.
 std::unique_ptr<FrameSource> open_recording(const std::filesystem::path& path, const ReplayOptions& options = {});
@@ -38,10 +39,8 @@ struct DepthMode {
 std::size_t nearest_depth_mode(const std::vector<DepthMode>& offered, const DepthMode& wanted);
 
 struct LiveOptions {
-  std::string uri;                         // empty: the first OpenNI2 device
+  std::string uri;                         // empty: the first real OpenNI2 device (never the virtual sensor)
   DepthMode mode;                          // wanted; the nearest offered is used and logged
-  std::optional<std::uint64_t> max_frames; // stop after this many frames
-  std::optional<double> max_seconds;       // stop after this long
   int stall_timeout_ms = 2000;             // no frame for this long: the device is lost
   int first_frame_timeout_ms = 20000;      // the wait for the first frame, if longer: a device
                                            // may take a while to start (over 2 s for the virtual
@@ -50,9 +49,27 @@ struct LiveOptions {
 
 // A live OpenNI2 depth stream. Frame::index is the sensor's frame index, so
 // frames the sensor produced but we never read show up as gaps. Throws
-// lccp::Error when no device answers the URI (or none is attached) or it has
-// no depth sensor; next() throws when the device disappears mid-stream.
+// lccp::Error when no device answers the URI (or, without a URI, no sensor is
+// attached) or it has no depth sensor; next() throws when the device
+// disappears mid-stream.
 std::unique_ptr<FrameSource> open_device(const LiveOptions& options);
+
+// The URI of the first device OpenNI2 reports that is not the virtual sensor
+// (what open_device uses without a URI). Throws lccp::Error, saying how to use
+// the virtual sensor, when no such device is attached.
+std::string first_sensor_uri();
+
+// One OpenNI2 device as enumerateDevices reports it, with its depth modes.
+struct DeviceDescription {
+  std::string uri;
+  std::string vendor;
+  std::string name;
+  std::vector<DepthMode> depth_modes;  // millimetre depth modes of its depth sensor (empty: none)
+};
+
+// Every device OpenNI2's drivers report (real sensors and the virtual sensor's
+// default URI), in OpenNI2's order.
+std::vector<DeviceDescription> list_devices();
 
 struct RecordStats {
   std::uint64_t frames = 0;
@@ -60,10 +77,10 @@ struct RecordStats {
 };
 
 // Records `frames` depth frames of a device with openni::Recorder (fewer if
-// `stop` is set first: what was recorded is kept). The file appears only when
+// a stop is requested first: what was recorded is kept). The file appears only when
 // complete; stats.frames is the count the file holds. Throws lccp::Error like
 // open_device, and when the device is lost (no file is left behind then).
 RecordStats record_device(const LiveOptions& options, const std::filesystem::path& output, std::uint64_t frames,
-                          const std::atomic<bool>& stop);
+                          std::stop_token stop = {});
 
 }  // namespace lccp

@@ -1,27 +1,15 @@
 #pragma once
-// The whole method on one cloud: the pipeline reads like the paper, one call per stage.
+// The whole method on one cloud, stage by stage (lccp/core/stages.hpp).
 #include <cstdint>
 
 #include "lccp/cloud.hpp"
 #include "lccp/config.hpp"
+#include "lccp/core/adjacency.hpp"
+#include "lccp/core/stages.hpp"
 #include "lccp/core/supervoxels.hpp"
 #include "lccp/core/voxel_grid.hpp"
 
 namespace lccp {
-
-struct StageTimes {
-  double voxelize_ms = 0;
-  double normals_ms = 0;
-  double seeds_ms = 0;
-  double growth_ms = 0;
-  double adjacency_ms = 0;
-  double classify_ms = 0;
-  double label_ms = 0;   // convex components
-  double filter_ms = 0;  // noise filter, relabelling and per-point labels
-  double total_ms() const {
-    return voxelize_ms + normals_ms + seeds_ms + growth_ms + adjacency_ms + classify_ms + label_ms + filter_ms;
-  }
-};
 
 struct SegmentationResult {
   Labels labels;  // per point: 1..segment_count, 0 for non-finite points
@@ -31,16 +19,21 @@ struct SegmentationResult {
   StageTimes times;
 };
 
-// Intermediate results between the stage groups (the streaming pipeline runs
-// each group in its own flow-graph node).
-struct VoxelizedCloud {
-  VoxelGrid grid;
-  std::vector<Eigen::Vector3f> normals;  // per voxel
-};
+// One cloud on its way through the stages: each stage reads what the earlier
+// ones left and adds its own result. The streaming pipeline hands it from node
+// to node; `cloud` must outlive it.
+struct SegmentationWork {
+  explicit SegmentationWork(const PointCloud& points) : cloud(&points) {}
 
-struct GrownSupervoxels {
-  VoxelizedCloud voxels;
-  Supervoxels supervoxels;
+  const PointCloud* cloud;
+  VoxelGrid grid;                                      // voxelize
+  std::vector<Eigen::Vector3f> normals;                // normals, per voxel
+  std::vector<std::uint32_t> seeds;                    // seeds, voxel indices
+  Supervoxels supervoxels;                             // growth
+  std::vector<Edge> edges;                             // adjacency
+  std::vector<std::uint8_t> convex;                    // classify, per edge
+  std::vector<std::uint32_t> segment_of_supervoxel;    // components, then filter
+  SegmentationResult result;                           // filter (labels, counts); times from every stage
 };
 
 class LccpSegmenter {
@@ -52,11 +45,9 @@ class LccpSegmenter {
   // whatever the thread count. Throws lccp::Error for a cloud without finite points.
   SegmentationResult segment(const PointCloud& cloud) const;
 
-  // segment() as three steps, for pipelining: stages 1-2, 3-4, 5-8. Each adds
-  // its stage times to `times`. label() returns the same result as segment().
-  VoxelizedCloud voxelize_with_normals(const PointCloud& cloud, StageTimes& times) const;
-  GrownSupervoxels grow(VoxelizedCloud voxels, StageTimes& times) const;
-  SegmentationResult label(const GrownSupervoxels& grown, const StageTimes& times) const;
+  // Runs one stage on `work` and adds its time to work.result.times. Stages
+  // run in kStages order; segment() is every stage in turn.
+  void run_stage(Stage stage, SegmentationWork& work) const;
 
   const LccpConfig& config() const { return config_; }
 

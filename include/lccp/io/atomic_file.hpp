@@ -59,6 +59,11 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view t
 // Writes what `write` puts on the stream, likewise (reports: JSON, CSV, HTML).
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
+// Creates an output folder and its parents if missing: the one way every
+// command makes one. Throws lccp::Error "cannot create output folder PATH:
+// reason" when that fails or PATH exists and is not a folder.
+void create_output_folder(const std::filesystem::path& path);
+
 // One file of a set written together.
 struct FileBytes {
   std::filesystem::path path;

@@ -2,15 +2,15 @@
 // The streaming pipeline: a oneTBB flow graph that segments a stream of frames
 // with several frames in flight and hands results over in frame order.
 //
-//   source (read on a capture thread) -> limiter(K) -> back-projection
-//          -> voxelize + normals -> supervoxels -> classify + label + filter
-//          -> sequencer -> sink -> limiter decrement
-#include <atomic>
+//   source (read on a capture thread) -> admission (K slots) -> back-projection
+//          -> one node per kPipelineNodes entry (the stages of kStages)
+//          -> sequencer -> sink -> the slot goes back to admission
 #include <cstdint>
 #include <functional>
+#include <stop_token>
 #include <string>
 
-#include "lccp/capture/frame_source.hpp"
+#include "lccp/frame_source.hpp"
 #include "lccp/core/lccp.hpp"
 #include "lccp/frame.hpp"
 
@@ -22,9 +22,13 @@ enum class DropPolicy {
   drop_oldest,  // a live source keeps running: the oldest waiting frame is dropped, the newest gets through
 };
 
+// Live sources (a sensor, --realtime replay) drop the oldest; others block.
+inline DropPolicy drop_policy_for(const FrameSource& source) {
+  return source.is_live() ? DropPolicy::drop_oldest : DropPolicy::block;
+}
+
 struct PipelineConfig {
-  unsigned frames_in_flight = 2;  // K >= 1
-  DropPolicy drop_policy = DropPolicy::block;
+  unsigned frames_in_flight = 2;  // K >= 1: frames in the graph at once
 };
 
 struct FrameResult {
@@ -42,15 +46,29 @@ struct FrameResult {
   }
 };
 
-// When run() returns normally: frames_received + (index gaps) ==
-// frames_completed + frames_dropped, i.e. every frame taken from the source is
-// either handed to the sink or dropped by the policy (drop_oldest only).
+// What a run did with the frames. Every frame the source produced is counted
+// once on each side:
+//   frames_received + sensor_gaps == frames_completed + frames_failed + frames_dropped
 struct PipelineStats {
-  std::uint64_t frames_received = 0;  // taken from the source
-  std::uint64_t frames_completed = 0; // handed to the sink (calls that returned)
-  std::uint64_t frames_dropped = 0;   // dropped by the policy (including a frame left waiting at stop),
-                                      // plus gaps in the source's frame index (b - a - 1 for index a then b)
+  std::uint64_t frames_received = 0;   // taken from the source
+  std::uint64_t sensor_gaps = 0;       // frames the source skipped: index a then b adds b - a - 1
+  std::uint64_t frames_completed = 0;  // handed to the sink with labels
+  std::uint64_t frames_failed = 0;     // handed to the sink with a stage error, or the sink threw on them
+  std::uint64_t frames_dropped = 0;    // never handed to the sink: the sensor gaps, frames dropped by
+                                       // drop_oldest or left waiting at a stop, frames after the sink threw
   double wall_seconds = 0;
+
+  bool adds_up() const {
+    return frames_received + sensor_gaps == frames_completed + frames_failed + frames_dropped;
+  }
+};
+
+// How a run ended: its counts, and the error that ended it (the source's, e.g.
+// "device ... disconnected", or the sink's), empty if the source ended or a
+// stop was requested.
+struct PipelineOutcome {
+  PipelineStats stats;
+  std::string error;
 };
 
 class Pipeline {
@@ -58,27 +76,18 @@ class Pipeline {
   // Throws lccp::Error for frames_in_flight == 0.
   Pipeline(const LccpSegmenter& segmenter, PipelineConfig config);
 
-  // Pulls frames until the source ends (or stop()); calls `sink` for every
-  // completed frame in frame order, one call at a time, on a TBB thread.
-  // A stage error stays with its frame (FrameResult::error). If the source
-  // throws, frames already in flight are finished and handed to the sink,
-  // then the source's exception is rethrown. If the sink throws, no new
-  // frames are taken, frames in flight are finished without calling the sink
-  // again, and the sink's exception is rethrown.
-  PipelineStats run(FrameSource& source, const std::function<void(FrameResult&)>& sink);
-
-  // Ends run() soon: no new frames are taken (the source's request_stop()
-  // unblocks a waiting next()), frames in flight complete and reach the sink.
-  // Called while no run() is active, it makes the next run() take no frames.
-  // Thread-safe and lock-free (atomics only).
-  void stop();
+  // Pulls frames until the source ends, fails, or `stop` is requested; calls
+  // `sink` for every frame that entered the graph, in frame order, one call at
+  // a time, on a TBB thread. A stage error stays with its frame
+  // (FrameResult::error). After a stop or a source error no frame is taken,
+  // and the frames in flight are finished and handed to the sink. After a
+  // sink error the frames in flight are finished but not handed over.
+  PipelineOutcome run(FrameSource& source, const std::function<void(FrameResult&)>& sink,
+                      std::stop_token stop = {}) const;
 
  private:
   const LccpSegmenter& segmenter_;
   PipelineConfig config_;
-  std::atomic<bool> stop_requested_{false};
-  std::atomic<FrameSource*> running_source_{nullptr};  // set while run() is active
-  std::atomic<int> stops_in_progress_{0};               // run() waits for these before returning
 };
 
 }  // namespace lccp

@@ -1,4 +1,4 @@
-#include "frame_source_spec.hpp"
+#include "lccp/capture/open_source.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,7 +7,7 @@
 #include "lccp/capture/openni_sources.hpp"
 #include "lccp/error.hpp"
 
-namespace lccp::app {
+namespace lccp {
 namespace {
 
 namespace fs = std::filesystem;
@@ -15,37 +15,38 @@ namespace fs = std::filesystem;
 bool is_uri(const std::string& spec) { return spec.find("://") != std::string::npos; }
 bool has_extension(const std::string& spec, const char* extension) { return fs::path(spec).extension() == extension; }
 
-// A source of files that stops after N frames or S seconds; the recording and
-// device sources stop after N frames themselves.
+// A source that ends after N frames or S seconds. A frame that arrives after
+// the S seconds is not passed on.
 class LimitedSource final : public FrameSource {
  public:
-  LimitedSource(std::unique_ptr<FrameSource> source, std::optional<std::uint64_t> max_frames,
-                std::optional<double> max_seconds)
-      : source_(std::move(source)), max_frames_(max_frames), max_seconds_(max_seconds) {}
+  LimitedSource(std::unique_ptr<FrameSource> source, const SourceLimits& limits)
+      : source_(std::move(source)), limits_(limits) {}
 
-  std::optional<Frame> next() override {
+  std::optional<Frame> next(std::stop_token stop) override {
     if (!started_) started_ = Clock::now();
-    if (max_frames_ && delivered_ >= *max_frames_) return std::nullopt;
-    if (max_seconds_ && std::chrono::duration<double>(Clock::now() - *started_).count() >= *max_seconds_) {
-      return std::nullopt;
-    }
-    std::optional<Frame> frame = source_->next();
-    if (frame) ++delivered_;
+    if (limits_.max_frames && delivered_ >= *limits_.max_frames) return std::nullopt;
+    if (out_of_time()) return std::nullopt;
+    std::optional<Frame> frame = source_->next(std::move(stop));
+    if (!frame || out_of_time()) return std::nullopt;
+    ++delivered_;
     return frame;
   }
 
   std::optional<std::uint64_t> frame_count() const override {
     const std::optional<std::uint64_t> count = source_->frame_count();
-    if (!max_frames_) return count;
-    return count ? std::min(*count, *max_frames_) : *max_frames_;
+    if (!limits_.max_frames) return count;
+    return count ? std::min(*count, *limits_.max_frames) : *limits_.max_frames;
   }
   bool is_live() const override { return source_->is_live(); }
-  void request_stop() override { source_->request_stop(); }
 
  private:
+  bool out_of_time() const {
+    return limits_.max_seconds &&
+           std::chrono::duration<double>(Clock::now() - *started_).count() >= *limits_.max_seconds;
+  }
+
   std::unique_ptr<FrameSource> source_;
-  std::optional<std::uint64_t> max_frames_;
-  std::optional<double> max_seconds_;
+  SourceLimits limits_;
   std::optional<Clock::time_point> started_;
   std::uint64_t delivered_ = 0;
 };
@@ -89,26 +90,31 @@ const char* to_string(SourceKind kind) {
   return "cloud files";
 }
 
-std::unique_ptr<FrameSource> open_frame_source(const std::vector<std::string>& specs, const SourceOptions& options) {
+std::unique_ptr<FrameSource> limit_source(std::unique_ptr<FrameSource> source, const SourceLimits& limits) {
+  if (limits.max_frames && *limits.max_frames == 0) throw Error("--frames must be at least 1");
+  if (limits.max_seconds && !(*limits.max_seconds > 0)) throw Error("--seconds must be more than 0");
+  if (!limits.max_frames && !limits.max_seconds) return source;
+  return std::make_unique<LimitedSource>(std::move(source), limits);
+}
+
+std::unique_ptr<FrameSource> open_source(const std::vector<std::string>& specs, const SourceOptions& options) {
   const SourceKind kind = source_kind(specs);
+  if (options.realtime && kind != SourceKind::recording) {
+    throw Error("--realtime needs an .oni recording: a device is always real time, cloud files have no timestamps");
+  }
+  std::unique_ptr<FrameSource> source;
   if (kind == SourceKind::device) {
     LiveOptions live;
     live.uri = specs.front();
-    live.max_frames = options.max_frames;
-    live.max_seconds = options.max_seconds;
-    return open_device(live);
-  }
-  if (kind == SourceKind::recording) {
+    source = open_device(live);
+  } else if (kind == SourceKind::recording) {
     ReplayOptions replay;
     replay.realtime = options.realtime;
-    replay.max_frames = options.max_frames;
-    std::unique_ptr<FrameSource> recording = open_recording(specs.front(), replay);
-    if (!options.max_seconds) return recording;
-    return std::make_unique<LimitedSource>(std::move(recording), std::nullopt, options.max_seconds);
+    source = open_recording(specs.front(), replay);
+  } else {
+    source = open_cloud_files(std::vector<fs::path>(specs.begin(), specs.end()));
   }
-  if (options.realtime) throw Error("--realtime needs an .oni recording: cloud files have no timestamps");
-  const std::vector<fs::path> paths(specs.begin(), specs.end());
-  return std::make_unique<LimitedSource>(open_cloud_files(paths), options.max_frames, options.max_seconds);
+  return limit_source(std::move(source), options.limits);
 }
 
-}  // namespace lccp::app
+}  // namespace lccp

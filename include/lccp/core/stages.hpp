@@ -1,0 +1,59 @@
+#pragma once
+// The one list of the method's stages, in the paper's order (Section II.B and
+// Appendix A). The segmenter runs them in this order, the streaming pipeline
+// groups them into its flow-graph nodes by `node`, and every timing report names
+// and orders its columns from this table.
+#include <array>
+#include <cstddef>
+#include <numeric>
+#include <string_view>
+
+namespace lccp {
+
+enum class Stage : unsigned char {
+  voxelize,    // 1. voxel grid with 26-adjacency (A.1, VCCS)
+  normals,     // 2. one normal per voxel
+  seeds,       // 3a. supervoxel seeds on a grid of R_seed
+  growth,      // 3b. VCCS growth in the weighted feature space
+  adjacency,   // 4a. the supervoxel adjacency graph (A.1)
+  classify,    // 4b. every edge convex or not: CC and SC, eq. (1)-(5) (A.2)
+  components,  // 5. connected components over convex edges (A.3)
+  filter,      // 6. small segments merged into their largest neighbour (A.4), a label per point
+};
+
+struct StageInfo {
+  Stage stage;
+  std::string_view name;  // column and key names in reports: "<name>_ms"
+  unsigned node;          // the pipeline's flow-graph node that runs it (kPipelineNodes)
+};
+
+inline constexpr std::array<StageInfo, 8> kStages{{
+    {Stage::voxelize, "voxelize", 0},
+    {Stage::normals, "normals", 0},
+    {Stage::seeds, "seeds", 1},
+    {Stage::growth, "growth", 1},
+    {Stage::adjacency, "adjacency", 2},
+    {Stage::classify, "classify", 2},
+    {Stage::components, "components", 2},
+    {Stage::filter, "filter", 2},
+}};
+inline constexpr std::size_t kStageCount = kStages.size();
+
+// The pipeline's nodes, each a run of consecutive stages of kStages.
+inline constexpr std::array<std::string_view, 3> kPipelineNodes{"voxelize_normals", "supervoxels", "graph_labels"};
+
+// Milliseconds per stage of one frame.
+struct StageTimes {
+  std::array<double, kStageCount> ms{};
+
+  double& operator[](Stage stage) { return ms[static_cast<std::size_t>(stage)]; }
+  double operator[](Stage stage) const { return ms[static_cast<std::size_t>(stage)]; }
+  double total_ms() const { return std::accumulate(ms.begin(), ms.end(), 0.0); }
+  double node_ms(unsigned node) const {
+    double sum = 0;
+    for (const StageInfo& info : kStages) sum += info.node == node ? (*this)[info.stage] : 0.0;
+    return sum;
+  }
+};
+
+}  // namespace lccp

@@ -1,0 +1,15 @@
+#pragma once
+// The presets of config/*.yaml, compiled in (cmake/presets.cpp.in).
+#include <string_view>
+#include <vector>
+
+namespace lccp::app {
+
+struct Preset {
+  std::string_view name;  // the file's stem: p1, p2, objects
+  std::string_view yaml;  // the file's text
+};
+
+const std::vector<Preset>& presets();
+
+}  // namespace lccp::app
