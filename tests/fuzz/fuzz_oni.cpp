@@ -3,6 +3,7 @@
 // manual playback) to the last frame. Either every frame comes out or an
 // lccp::Error is thrown.
 #include <cstddef>
+#include <stop_token>
 #include <cstdint>
 #include <optional>
 
@@ -21,7 +22,7 @@ void replay_every_frame(const std::uint8_t* data, std::size_t size) {
   lccp::ReplayOptions options;
   options.stall_timeout_ms = kStallTimeoutMs;
   const auto source = lccp::open_recording(path, options);
-  while (source->next()) {
+  while (source->next(std::stop_token{})) {
   }
 }
 
