@@ -42,6 +42,27 @@ struct RunResult {
 
 
 
+// Starts argv_text[0] (searched on PATH) with the other words as arguments,
+// without a shell: stdin from /dev/null, stdout and stderr into the given files
+// (created or truncated; "/dev/null" discards). Returns the pid, or -1 after
+// recording a test failure.
+inline pid_t spawn_process(std::vector<std::string> argv_text, const fs::path& out_path, const fs::path& err_path) {
+  std::vector<char*> argv;
+  for (std::string& arg : argv_text) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int error = posix_spawnp(&pid, argv_text[0].c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error == 0) return pid;
+  ADD_FAILURE() << "cannot start " << argv_text[0] << ": " << std::strerror(error);
+  return -1;
+}
+
 // Runs `timeout SECONDS lccp ARGS...` without a shell, stdin from /dev/null and
 // stdout/stderr into files under `capture_dir`. timeout(1) re-raises a signal
 // that killed lccp, so a crash shows up as `signal`; a hang exits 124.
@@ -58,22 +79,8 @@ inline RunResult run_lccp(const fs::path& capture_dir, const std::vector<std::st
 
   std::vector<std::string> argv_text = {"timeout", "-k", "5", std::to_string(timeout_seconds), kBinary.string()};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : argv_text) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  const int spawn_error = posix_spawnp(&pid, "timeout", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0) {
-    ADD_FAILURE() << "cannot start " << result.command << ": " << std::strerror(spawn_error);
-    return result;
-  }
+  const pid_t pid = spawn_process(std::move(argv_text), out_path, err_path);
+  if (pid < 0) return result;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) {
@@ -156,6 +163,20 @@ inline double json_number(const std::string& json, const std::string& key) {
     return -1.0;
   }
   return std::stod(match[1]);
+}
+
+// The counts of a run's JSON (summary.json, report.json) add up (received +
+// sensor gaps = completed + failed + dropped), and `text` (stdout, report.html)
+// says the same numbers the way the summary line does.
+inline void expect_counts_add_up(const std::string& json, const std::string& text) {
+  const auto n = [&](const char* key) { return static_cast<long>(json_number(json, key)); };
+  EXPECT_EQ(n("frames_received") + n("sensor_gaps"), n("frames_completed") + n("frames_failed") + n("frames_dropped"))
+      << json;
+  const std::string counts = std::to_string(n("frames_received")) + " received + " + std::to_string(n("sensor_gaps")) +
+                             " sensor gaps = " + std::to_string(n("frames_completed")) + " completed + " +
+                             std::to_string(n("frames_failed")) + " failed + " + std::to_string(n("frames_dropped")) +
+                             " dropped";
+  EXPECT_NE(text.find(counts), std::string::npos) << "no '" << counts << "' in: " << text;
 }
 
 // A test that runs the binary, with a fresh scratch folder: work/ for the test's

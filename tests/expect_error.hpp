@@ -5,12 +5,13 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "lccp/error.hpp"
 
 namespace lccp::test {
 
-inline void expect_lccp_error(const std::function<void()>& action, std::initializer_list<std::string> parts) {
+inline void expect_lccp_error(const std::function<void()>& action, const std::vector<std::string>& parts) {
   try {
     action();
     ADD_FAILURE() << "no lccp::Error thrown";

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli_runner.hpp"
 #include "lccp/io/cloud_io.hpp"
 #include "test_files.hpp"
 
@@ -35,21 +36,9 @@ const fs::path kRecording = fs::path(LCCP_TEST_DATA_DIR) / ".." / ".." / "record
 // The binary started directly (no timeout wrapper, so signals reach it), its
 // output discarded.
 pid_t start_lccp(const std::vector<std::string>& args) {
-  std::vector<std::string> text{LCCP_BINARY};
-  text.insert(text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : text) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int error = posix_spawn(&pid, text[0].c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(error, 0) << "cannot start " << text[0];
-  return pid;
+  std::vector<std::string> argv_text{LCCP_BINARY};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  return test::spawn_process(std::move(argv_text), "/dev/null", "/dev/null");
 }
 
 // Waits for the process; returns its exit code, or 1000 + signal if a signal killed it.

@@ -55,7 +55,11 @@ FrameWriter::FrameWriter(const FrameOutputOptions& options) : options_(options),
 void FrameWriter::write(const FrameResult& result) {
   if (directory_.empty()) return;
   const std::string name = frame_output_stem(result.frame);
-  if (!stems_.insert(name).second) throw Error("two inputs named " + name + ": their outputs would overwrite each other");
+  // Frames named after their input file may share a stem (a.pcd in two folders);
+  // frame_<index>_... names are unique by the index.
+  if (!result.frame.name.empty() && !input_stems_.insert(name).second) {
+    throw Error("two inputs named " + name + ": their outputs would overwrite each other");
+  }
   const PointCloud& cloud = result.frame.cloud;
   const Labels no_labels(cloud.size(), 0);
   const Labels& labels = result.segmentation.labels.size() == cloud.size() ? result.segmentation.labels : no_labels;

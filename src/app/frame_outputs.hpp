@@ -43,7 +43,7 @@ class FrameWriter {
  private:
   FrameOutputOptions options_;
   std::filesystem::path directory_;
-  std::set<std::string> stems_;
+  std::set<std::string> input_stems_;  // names taken from input files
 };
 
 }  // namespace lccp::app

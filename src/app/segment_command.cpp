@@ -49,6 +49,9 @@ void refuse_overwriting_input(const std::string& input, const std::vector<std::s
 int segment_one(const SegmentOptions& options, std::stop_token stop) {
   const std::string& input = options.inputs.front();
   const std::string& output = options.stream.outputs.directory;
+  if (options.stream.outputs.save_option->count() > 0) {
+    throw UsageError("--save is for several inputs; for one, -o's extension picks the format and --png adds the image");
+  }
   const LccpSegmenter segmenter(options.stream.config.resolve());
   refuse_overwriting_input(input, {output, options.png});
   const FrameOutputOptions& out = options.stream.outputs;

@@ -58,7 +58,7 @@ int run_truth(const TruthOptions& options, std::stop_token stop) {
     }
     if (frames == 0) create_output_folder(options.directory);  // only once the recording is known to match
     const std::filesystem::path path = std::filesystem::path(options.directory) / (frame_output_stem(*frame) + ".pcd");
-    write_labelled_pcd(path, back_project(*frame->depth), labels);
+    write_labelled_pcd(path, back_project(*frame->depth), labels, PcdEncoding::binary_compressed);
     ++frames;
   }
   std::printf("wrote the ground truth of %llu frames to %s\n", static_cast<unsigned long long>(frames),
