@@ -23,7 +23,7 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
   return labels;
 }
 
-// Stage 6 (A.4): small segments merged, segments numbered 1..K by size, and
+// Stage 8 (A.4): small segments merged, segments numbered 1..K by size, and
 // every point labelled through its voxel's supervoxel.
 void filter_and_label(SegmentationWork& w, std::uint32_t n_filter) {
   merge_small_segments(w.segment_of_supervoxel, w.edges, n_filter);

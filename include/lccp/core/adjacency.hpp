@@ -1,5 +1,5 @@
 #pragma once
-// Supervoxel adjacency graph G(V, E) (paper A.1).
+// Stage 5 (kStages): the supervoxel adjacency graph G(V, E) (paper A.1).
 #include <cstdint>
 #include <vector>
 

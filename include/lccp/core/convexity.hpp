@@ -1,5 +1,5 @@
 #pragma once
-// Stage 4: edge classification, paper Appendix A.2, eq. (1)-(5).
+// Stage 6 (kStages): edge classification, paper Appendix A.2, eq. (1)-(5).
 #include <cstdint>
 #include <vector>
 

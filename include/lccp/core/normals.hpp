@@ -1,5 +1,5 @@
 #pragma once
-// Stage 2: one unit normal per voxel.
+// Stage 2 (kStages): one unit normal per voxel.
 #include <vector>
 
 #include <Eigen/Core>

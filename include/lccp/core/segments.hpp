@@ -1,5 +1,5 @@
 #pragma once
-// Stages 5-6: convex connected components (A.3) and the noise filter (A.4).
+// Stages 7-8 (kStages): convex connected components (A.3) and the noise filter (A.4).
 #include <cstdint>
 #include <vector>
 

@@ -13,12 +13,12 @@ namespace lccp {
 enum class Stage : unsigned char {
   voxelize,    // 1. voxel grid with 26-adjacency (A.1, VCCS)
   normals,     // 2. one normal per voxel
-  seeds,       // 3a. supervoxel seeds on a grid of R_seed
-  growth,      // 3b. VCCS growth in the weighted feature space
-  adjacency,   // 4a. the supervoxel adjacency graph (A.1)
-  classify,    // 4b. every edge convex or not: CC and SC, eq. (1)-(5) (A.2)
-  components,  // 5. connected components over convex edges (A.3)
-  filter,      // 6. small segments merged into their largest neighbour (A.4), a label per point
+  seeds,       // 3. supervoxel seeds on a grid of R_seed
+  growth,      // 4. VCCS growth in the weighted feature space
+  adjacency,   // 5. the supervoxel adjacency graph (A.1)
+  classify,    // 6. every edge convex or not: CC and SC, eq. (1)-(5) (A.2)
+  components,  // 7. connected components over convex edges (A.3)
+  filter,      // 8. small segments merged into their largest neighbour (A.4), a label per point
 };
 
 struct StageInfo {

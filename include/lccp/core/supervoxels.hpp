@@ -1,5 +1,5 @@
 #pragma once
-// Stage 3: VCCS supervoxels, seeded on a grid and grown over voxel adjacency.
+// Stages 3-4 (kStages): VCCS supervoxels, seeded on a grid and grown over voxel adjacency.
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 1: voxelization with a 26-neighbourhood (paper A.1, VCCS [15]).
+// Stage 1 (kStages): voxelization with a 26-neighbourhood (paper A.1, VCCS [15]).
 #include <cstdint>
 #include <vector>
 
