@@ -32,6 +32,19 @@ struct ConvexityConfig {
   float sigmoid_slope_per_deg = 0.25f;  // a in eq. (3)
 };
 
+// Support-plane removal before segmentation (paper Sec. III.C, Fig. 5: "an
+// initial ground plane separation step"): RANSAC finds the dominant plane and
+// its points become the support segment. Off in P1 and P2, on in the object preset.
+struct SupportPlaneConfig {
+  bool enabled = false;
+  float distance_m = 0.01f;           // a point within this distance of the plane is on it
+  float up_x = 0, up_y = 0, up_z = 0; // expected up direction (sensor frame); all 0: any plane
+  float max_tilt_deg = 30.0f;         // largest angle between the plane normal and up (if up is set)
+  float min_inlier_share = 0.1f;      // fewer inliers (share of finite points): no support plane
+  std::uint32_t iterations = 256;     // RANSAC hypotheses
+  std::uint32_t seed = 1;             // RANSAC random seed: fixed, so every run finds the same plane
+};
+
 struct FilterConfig {
   std::uint32_t n_filter_supervoxels = 3;  // segments of <= this many supervoxels merge (A.4)
 };
@@ -49,6 +62,7 @@ struct LimitsConfig {
 };
 
 struct LccpConfig {
+  SupportPlaneConfig support;
   VoxelConfig voxels;
   SupervoxelConfig supervoxels;
   ConvexityConfig convexity;

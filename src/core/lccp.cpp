@@ -37,10 +37,12 @@ void filter_and_label(SegmentationWork& w, std::uint32_t n_filter) {
 
 LccpSegmenter::LccpSegmenter(const LccpConfig& config) : config_(config) { validate(config_); }
 
-SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const {
+SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const { return std::move(run(cloud).result); }
+
+SegmentationWork LccpSegmenter::run(const PointCloud& cloud) const {
   SegmentationWork work(cloud);
   for (const StageInfo& stage : kStages) run_stage(stage.stage, work);
-  return std::move(work.result);
+  return work;
 }
 
 void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {

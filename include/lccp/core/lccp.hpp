@@ -45,6 +45,10 @@ class LccpSegmenter {
   // whatever the thread count. Throws lccp::Error for a cloud without finite points.
   SegmentationResult segment(const PointCloud& cloud) const;
 
+  // The same, keeping every stage's output (grid, normals, supervoxels, graph)
+  // for what is computed from it (per-segment geometry).
+  SegmentationWork run(const PointCloud& cloud) const;
+
   // Runs one stage on `work` and adds its time to work.result.times. Stages
   // run in kStages order; segment() is every stage in turn.
   void run_stage(Stage stage, SegmentationWork& work) const;
