@@ -1,6 +1,6 @@
 // Tests for the labelled-cloud writers of lccp/io/cloud_io.hpp: compressed
-// PCD (and the LZF compressor behind it), PLY, the choice by extension, and
-// the overlay label image.
+// PCD (and the LZF compressor behind it), PLY, the choice by extension, the
+// object field of two-level outputs, and the label images (overlay, objects).
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -64,6 +65,15 @@ Labels labels_for(const PointCloud& cloud) {
   Labels labels;
   for (std::size_t i = 0; i < cloud.size(); ++i) labels.push_back(is_finite(cloud.points[i]) ? 1 + i % 9 : 0);
   return labels;
+}
+
+// Object ids for labels_for's parts: parts 1-3 form object 21, 4-6 object 22,
+// 8-9 object 23; 7 is the support (object and part 7, as SceneSegmentation
+// gives it); 0 for 0.
+Labels objects_for(const Labels& labels) {
+  Labels objects;
+  for (const std::uint32_t label : labels) objects.push_back(label == 0 || label == 7 ? label : 21 + (label - 1) / 3);
+  return objects;
 }
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -201,6 +211,71 @@ TEST(IoWriterPcd, CompressedRoundTripOf640x480WithNans) {
   }
 }
 
+// Point i's uint32 in 4-byte field f of a PCD's DATA binary records of `fields` fields.
+std::uint32_t binary_field(const std::string& pcd, std::size_t fields, std::size_t i, std::size_t f) {
+  const std::size_t data = data_start(pcd, "DATA binary\n");
+  return load<std::uint32_t>(reinterpret_cast<const std::uint8_t*>(pcd.data()) + data + 4 * (fields * i + f));
+}
+
+TEST(IoWriterPcd, ObjectFieldFollowsLabelInBothEncodings) {
+  for (const bool colors : {true, false}) {
+    SCOPED_TRACE(colors ? "colours" : "no colours");
+    const PointCloud cloud = organized_cloud(9, 7, colors);
+    const Labels labels = labels_for(cloud), objects = objects_for(labels);
+    const std::size_t fields = colors ? 6 : 5, n = cloud.size();
+    const std::string header = colors ? "FIELDS x y z rgb label object\nSIZE 4 4 4 4 4 4\nTYPE F F F F U U\n"
+                                        "COUNT 1 1 1 1 1 1\nWIDTH 9\nHEIGHT 7\n"
+                                      : "FIELDS x y z label object\nSIZE 4 4 4 4 4\nTYPE F F F U U\n"
+                                        "COUNT 1 1 1 1 1\nWIDTH 9\nHEIGHT 7\n";
+    const std::string binary = as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary));
+    const std::string compressed =
+        as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary_compressed));
+    EXPECT_NE(binary.find("VERSION 0.7\n" + header), std::string::npos) << binary.substr(0, 300);
+    EXPECT_NE(compressed.find("VERSION 0.7\n" + header), std::string::npos);
+    const std::size_t data = data_start(compressed, "DATA binary_compressed\n");
+    const Bytes raw = expand_compressed(compressed, data, static_cast<std::uint32_t>(4 * fields * n));
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(binary_field(binary, fields, i, fields - 2), labels[i]) << "point " << i;
+      ASSERT_EQ(binary_field(binary, fields, i, fields - 1), objects[i]) << "point " << i;
+      ASSERT_EQ(load<std::uint32_t>(&raw[4 * ((fields - 2) * n + i)]), labels[i]) << "point " << i;
+      ASSERT_EQ(load<std::uint32_t>(&raw[4 * ((fields - 1) * n + i)]), objects[i]) << "point " << i;
+    }
+    EXPECT_EQ(binary.size(), data_start(binary, "DATA binary\n") + 4 * fields * n);
+    expect_same_cloud(parse_pcd(to_bytes(binary), "mem.pcd"), cloud, labels);  // `object` is one more field
+    expect_same_cloud(parse_pcd(to_bytes(compressed), "mem.pcd"), cloud, labels);
+  }
+}
+
+TEST(IoWriterPcd, WithoutObjectsTheBytesAreAsBefore) {
+  const PointCloud cloud = organized_cloud(6, 4, true);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  for (const PcdEncoding encoding : {PcdEncoding::binary, PcdEncoding::binary_compressed}) {
+    const Bytes before = encode_labelled_pcd(cloud, labels, encoding);
+    EXPECT_EQ(encode_labelled_pcd(cloud, labels, nullptr, encoding), before);
+    EXPECT_EQ(encode_labelled_pcd(cloud, labels, encoding, nullptr), before);
+    EXPECT_EQ(as_text(before).find("object"), std::string::npos);
+    EXPECT_EQ(encode_labelled_pcd(cloud, labels, encoding, &objects),
+              encode_labelled_pcd(cloud, labels, &objects, encoding));
+  }
+  EXPECT_EQ(encode_labelled_pcd(cloud, labels, &objects),
+            encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary));
+  const Labels short_objects(4, 1);
+  expect_lccp_error([&] { encode_labelled_pcd(cloud, labels, &short_objects); },
+                    {"objects and points differ in number"});
+}
+
+TEST(IoWriterPcd, FilesWithObjectsReadBack) {
+  const PointCloud cloud = organized_cloud(16, 12, true);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  const fs::path dir = scratch_dir();
+  write_labelled_pcd(dir / "binary.pcd", cloud, labels, &objects);
+  write_labelled_pcd(dir / "compressed.pcd", cloud, labels, &objects, PcdEncoding::binary_compressed);
+  EXPECT_EQ(test::read_bytes(dir / "binary.pcd"), as_text(encode_labelled_pcd(cloud, labels, &objects)));
+  EXPECT_EQ(test::read_bytes(dir / "compressed.pcd"),
+            as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary_compressed)));
+  for (const char* name : {"binary.pcd", "compressed.pcd"}) expect_same_cloud(read_cloud(dir / name), cloud, labels);
+}
+
 TEST(IoWriterPcd, MosdSceneCompressesBelowSixtyPercent) {
   const LabelledCloud scene = read_cloud(kData / "mosd_test2.pcd");
   ASSERT_TRUE(scene.labels.has_value());
@@ -233,6 +308,38 @@ TEST(IoWriterPly, RoundTripKeepsPointsNansColoursLabelsAndShape) {
     const std::size_t step = colors ? 19 : 16;
     EXPECT_EQ(text.size(), data_start(text, "end_header\n") + 35 * step + 21 * 4);  // every point, then the camera
   }
+}
+
+TEST(IoWriterPly, ObjectPropertyFollowsLabel) {
+  for (const bool colors : {true, false}) {
+    SCOPED_TRACE(colors ? "colours" : "no colours");
+    const PointCloud cloud = organized_cloud(7, 5, colors);
+    const Labels labels = labels_for(cloud), objects = objects_for(labels);
+    const Bytes bytes = encode_labelled_ply(cloud, labels, &objects);
+    const std::string text = as_text(bytes);
+    EXPECT_NE(text.find("property uint label\nproperty uint object\nelement face 0\n"), std::string::npos);
+    const std::size_t step = colors ? 23 : 20, data = data_start(text, "end_header\n");
+    ASSERT_EQ(text.size(), data + 35 * step + 21 * 4);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {  // little-endian, as the header says
+      const std::uint8_t* record = bytes.data() + data + i * step;
+      const std::uint32_t object = record[step - 4] | record[step - 3] << 8 | record[step - 2] << 16 |
+                                   std::uint32_t{record[step - 1]} << 24;
+      ASSERT_EQ(load<std::uint32_t>(record + step - 8), labels[i]) << "point " << i;
+      ASSERT_EQ(object, objects[i]) << "point " << i;
+    }
+    expect_same_cloud(parse_ply(bytes, "mem.ply"), cloud, labels);
+    EXPECT_EQ(encode_labelled_ply(cloud, labels, nullptr), encode_labelled_ply(cloud, labels));
+    EXPECT_EQ(as_text(encode_labelled_ply(cloud, labels)).find("object"), std::string::npos);
+  }
+  const PointCloud cloud = organized_cloud(5, 4, true);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  const fs::path path = scratch_dir() / "objects.ply";
+  write_labelled_ply(path, cloud, labels, &objects);
+  EXPECT_EQ(test::read_bytes(path), as_text(encode_labelled_ply(cloud, labels, &objects)));
+  expect_same_cloud(read_cloud(path), cloud, labels);
+  const Labels short_objects(4, 1);
+  expect_lccp_error([&] { encode_labelled_ply(cloud, labels, &short_objects); },
+                    {"objects and points differ in number"});
 }
 
 TEST(IoWriterPly, CameraElementIsPlyWritersOwn) {
@@ -269,6 +376,35 @@ TEST(IoWriterCloud, ExtensionPicksTheFormat) {
   EXPECT_EQ(encode_labelled_cloud("x/y.pcd", cloud, labels), compressed);
   EXPECT_EQ(encode_labelled_cloud("y.ply", cloud, labels, PcdEncoding::binary), encode_labelled_ply(cloud, labels));
   for (const char* name : {"a.pcd", "b.PLY", "c.Pcd"}) expect_same_cloud(read_cloud(dir / name), cloud, labels);
+}
+
+TEST(IoWriterCloud, ExtensionPicksTheFormatWithObjects) {
+  const PointCloud cloud = organized_cloud(8, 6, true);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  const fs::path dir = scratch_dir();
+  write_labelled_cloud(dir / "a.pcd", cloud, labels, &objects);
+  write_labelled_cloud(dir / "b.ply", cloud, labels, &objects);
+  write_labelled_cloud(dir / "c.pcd", cloud, labels, &objects, PcdEncoding::binary);
+  EXPECT_EQ(test::read_bytes(dir / "a.pcd"),
+            as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary_compressed)));
+  EXPECT_EQ(test::read_bytes(dir / "b.ply"), as_text(encode_labelled_ply(cloud, labels, &objects)));
+  EXPECT_EQ(test::read_bytes(dir / "c.pcd"), as_text(encode_labelled_pcd(cloud, labels, &objects)));
+  EXPECT_EQ(encode_labelled_cloud("x.pcd", cloud, labels, nullptr), encode_labelled_cloud("x.pcd", cloud, labels));
+  EXPECT_EQ(encode_labelled_cloud("x.ply", cloud, labels, nullptr), encode_labelled_ply(cloud, labels));
+  for (const char* name : {"a.pcd", "b.ply", "c.pcd"}) expect_same_cloud(read_cloud(dir / name), cloud, labels);
+  // The encoding may also come before the objects.
+  EXPECT_EQ(encode_labelled_cloud("x.pcd", cloud, labels, PcdEncoding::binary, &objects),
+            encode_labelled_cloud("x.pcd", cloud, labels, &objects, PcdEncoding::binary));
+  write_labelled_cloud(dir / "d.pcd", cloud, labels, PcdEncoding::binary, &objects);
+  write_labelled_pcd(dir / "e.pcd", cloud, labels, PcdEncoding::binary, &objects);
+  EXPECT_EQ(test::read_bytes(dir / "d.pcd"), test::read_bytes(dir / "c.pcd"));
+  EXPECT_EQ(test::read_bytes(dir / "e.pcd"), test::read_bytes(dir / "c.pcd"));
+  const Labels short_objects(3, 1);
+  expect_lccp_error([&] { write_labelled_cloud(dir / "short.ply", cloud, labels, &short_objects); },
+                    {"short.ply: objects and points differ in number"});
+  expect_lccp_error([&] { encode_labelled_cloud(dir / "short.pcd", cloud, labels, &short_objects); },
+                    {"short.pcd: objects and points differ in number"});
+  EXPECT_FALSE(fs::exists(dir / "short.ply"));
 }
 
 TEST(IoWriterCloud, UnknownExtensionAndBadInputNameThePath) {
@@ -402,6 +538,84 @@ TEST(IoWriterPng, ShadingFollowsSurfaceOrientation) {
   EXPECT_EQ(written.height, 480u);
   expect_lccp_error([&] { encode_label_png(organized_cloud(12, 1, false), Labels(12, 0), LabelImageStyle::overlay); },
                     {"a label image needs an organized cloud"});
+}
+
+// Hue in degrees [0, 360) and HSL lightness in [0, 1] of a pixel.
+struct HueLightness {
+  double hue = 0, lightness = 0;
+};
+
+HueLightness hue_lightness(const std::array<std::uint8_t, 3>& rgb) {
+  const double r = rgb[0] / 255.0, g = rgb[1] / 255.0, b = rgb[2] / 255.0;
+  const double max = std::max({r, g, b}), min = std::min({r, g, b}), chroma = max - min;
+  double hue = 0;
+  if (chroma > 0 && max == r) hue = std::fmod((g - b) / chroma + 6.0, 6.0);
+  else if (chroma > 0 && max == g) hue = (b - r) / chroma + 2.0;
+  else if (chroma > 0) hue = (r - g) / chroma + 4.0;
+  return {60.0 * hue, (max + min) / 2};
+}
+
+double hue_distance(double a, double b) {
+  const double d = std::abs(a - b);
+  return std::min(d, 360.0 - d);
+}
+
+TEST(IoWriterPng, PartsAreShadesOfTheirObjectsHue) {
+  const PointCloud cloud = organized_cloud(12, 9, false);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  const Image image = decode_png(encode_label_png(cloud, labels, LabelImageStyle::labels, &objects));
+  ASSERT_EQ(image.pixels.size(), cloud.size());
+  std::array<std::optional<HueLightness>, 10> seen;  // per part label
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    SCOPED_TRACE("pixel " + std::to_string(i));
+    const auto pixel = image.pixels[i];
+    EXPECT_EQ(pixel, part_color(objects[i], labels[i]));
+    if (labels[i] == 0) {
+      EXPECT_EQ(pixel, (std::array<std::uint8_t, 3>{0, 0, 0}));
+    } else if (labels[i] == 7) {
+      EXPECT_EQ(pixel, label_color(labels[i]));  // the support: as without objects
+    } else {
+      seen[labels[i]] = hue_lightness(pixel);
+    }
+  }
+  for (const std::uint32_t part : {1, 2, 3, 4, 5, 6, 8, 9}) {
+    ASSERT_TRUE(seen[part].has_value()) << part;
+    EXPECT_GT(seen[part]->lightness, 0.2) << part;  // never black or white
+    EXPECT_LT(seen[part]->lightness, 0.85) << part;
+  }
+  for (const auto& [first, last] : {std::pair{1u, 3u}, {4u, 6u}, {8u, 9u}})  // the parts of one object
+    for (std::uint32_t a = first; a < last; ++a) {
+      EXPECT_LT(hue_distance(seen[a]->hue, seen[a + 1]->hue), 2.0) << a;             // the object's hue
+      EXPECT_GT(std::abs(seen[a]->lightness - seen[a + 1]->lightness), 0.2) << a;  // told apart
+    }
+  EXPECT_GT(hue_distance(seen[1]->hue, seen[4]->hue), 30.0);  // objects 21, 22 and 23
+  EXPECT_GT(hue_distance(seen[4]->hue, seen[8]->hue), 30.0);
+  EXPECT_GT(hue_distance(seen[1]->hue, seen[8]->hue), 30.0);
+}
+
+TEST(IoWriterPng, ObjectColoursInOverlayAndWithoutObjects) {
+  const PointCloud cloud = organized_cloud(12, 9, false);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  for (const LabelImageStyle style : {LabelImageStyle::labels, LabelImageStyle::overlay})
+    EXPECT_EQ(encode_label_png(cloud, labels, style, nullptr), encode_label_png(cloud, labels, style));
+  const Image overlay = decode_png(encode_label_png(cloud, labels, LabelImageStyle::overlay, &objects));
+  const Image grey = decode_png(encode_label_png(cloud, Labels(cloud.size(), 0), LabelImageStyle::overlay));
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (labels[i] == 0) {
+      EXPECT_EQ(overlay.pixels[i], grey.pixels[i]) << i;
+      continue;
+    }
+    const auto color = part_color(objects[i], labels[i]);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(overlay.pixels[i][c], (grey.pixels[i][c] + color[c] + 1) / 2) << i;
+  }
+  const fs::path path = scratch_dir() / "objects.png";
+  write_label_png(path, cloud, labels, LabelImageStyle::labels, &objects);
+  EXPECT_EQ(test::read_bytes(path), as_text(encode_label_png(cloud, labels, LabelImageStyle::labels, &objects)));
+  const Labels short_objects(5, 1);
+  expect_lccp_error([&] { encode_label_png(cloud, labels, LabelImageStyle::labels, &short_objects); },
+                    {"objects and points differ in number"});
+  EXPECT_EQ(part_color(0, 5), label_color(5));
+  EXPECT_EQ(part_color(9, 0), (std::array<std::uint8_t, 3>{0, 0, 0}));
 }
 
 }  // namespace

@@ -112,38 +112,61 @@ Rgb blend(std::uint8_t grey, const Rgb& color) {
   return out;
 }
 
-std::vector<Rgb> overlay_pixels(const PointCloud& cloud, const Labels& labels) {
+// The colour of point i: label_color of its label, or with objects part_color.
+Rgb point_color(const Labels& labels, const Labels* objects, std::size_t i) {
+  return objects ? part_color((*objects)[i], labels[i]) : label_color(labels[i]);
+}
+
+std::vector<Rgb> overlay_pixels(const PointCloud& cloud, const Labels& labels, const Labels* objects) {
   std::vector<Rgb> pixels(cloud.size(), Rgb{0, 0, 0});  // NaN points stay black
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (!is_finite(cloud.points[i])) continue;
     const std::uint8_t grey = shade(cloud, static_cast<std::int64_t>(i % cloud.width),
                                     static_cast<std::int64_t>(i / cloud.width));
-    pixels[i] = labels[i] == 0 ? Rgb{grey, grey, grey} : blend(grey, label_color(labels[i]));
+    pixels[i] = labels[i] == 0 ? Rgb{grey, grey, grey} : blend(grey, point_color(labels, objects, i));
   }
   return pixels;
 }
 
-std::vector<Rgb> label_pixels(const Labels& labels) {
+std::vector<Rgb> label_pixels(const Labels& labels, const Labels* objects) {
   std::vector<Rgb> pixels(labels.size());
-  std::transform(labels.begin(), labels.end(), pixels.begin(), label_color);
+  for (std::size_t i = 0; i < labels.size(); ++i) pixels[i] = point_color(labels, objects, i);
   return pixels;
+}
+
+// An id's hue in [0, 6) (sextants of the colour wheel): the id times 2^32 / phi
+// modulo 2^32 (Fibonacci hashing, Knuth TAOCP vol. 3, 6.4; exact in
+// integers), so neighbouring ids land about 137 degrees apart.
+double id_hue(std::uint32_t id) { return static_cast<std::uint32_t>(id * 2654435769u) / 4294967296.0 * 6.0; }
+
+// Red, green and blue in [0, 1] of a hue in [0, 6) with the given chroma,
+// plus m added to each (the hexcone model: Smith, "Color gamut transform
+// pairs", SIGGRAPH 1978).
+Rgb hexcone(double hue, double chroma, double m) {
+  const double x = chroma * (1 - std::abs(std::fmod(hue, 2.0) - 1));
+  const double rgb[6][3] = {{chroma, x, 0}, {x, chroma, 0}, {0, chroma, x},
+                            {0, x, chroma}, {x, 0, chroma}, {chroma, 0, x}};
+  const auto& c = rgb[static_cast<int>(hue) % 6];
+  const auto byte = [m](double v) { return static_cast<std::uint8_t>(std::lround((v + m) * 255.0)); };
+  return {byte(c[0]), byte(c[1]), byte(c[2])};
 }
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels, LabelImageStyle style) {
+std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels, LabelImageStyle style,
+                                           const Labels* objects) {
   if (!cloud.organized()) throw Error("a label image needs an organized cloud");
-  io_detail::check_labelled_cloud(cloud, labels);
+  io_detail::check_labelled_cloud(cloud, labels, objects);
   return encode_png(cloud.width, cloud.height,
-                    style == LabelImageStyle::overlay ? overlay_pixels(cloud, labels) : label_pixels(labels));
+                    style == LabelImageStyle::overlay ? overlay_pixels(cloud, labels, objects)
+                                                      : label_pixels(labels, objects));
 }
 
-// Hue steps by the golden ratio (Fibonacci hashing, exact in integers), so
-// neighbouring ids land about 137 degrees apart; saturation cycles over three
-// levels; value is fixed and high, so no label is ever black.
+// Hue from id_hue; saturation cycles over three levels; value is fixed and
+// high, so no label is ever black.
 std::array<std::uint8_t, 3> label_color(std::uint32_t label) {
   if (label == 0) return {0, 0, 0};
-  const double hue = static_cast<std::uint32_t>(label * 2654435769u) / 4294967296.0 * 6.0;  // [0, 6)
+  const double hue = id_hue(label);
   const double saturation = 0.95 - 0.2 * (label % 3);
   const double value = 0.95;
   const double f = hue - std::floor(hue);
@@ -152,6 +175,17 @@ std::array<std::uint8_t, 3> label_color(std::uint32_t label) {
   const auto& c = rgb[static_cast<int>(hue) % 6];
   const auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(x * 255.0)); };
   return {byte(c[0]), byte(c[1]), byte(c[2])};
+}
+
+// HSL with the object's hue, saturation 0.85 and the part's lightness: level
+// 2 x part mod 5 of 0.30, 0.42, 0.54, 0.66, 0.78, so part ids n and n + 1 are
+// two or three levels (0.24 or more) apart and only ids five apart share one.
+std::array<std::uint8_t, 3> part_color(std::uint32_t object, std::uint32_t part) {
+  if (part == 0) return {0, 0, 0};
+  if (object == 0 || object == part) return label_color(part);
+  const double lightness = 0.30 + 0.12 * ((2 * std::uint64_t{part}) % 5);
+  const double chroma = (1 - std::abs(2 * lightness - 1)) * 0.85;
+  return hexcone(id_hue(object), chroma, lightness - chroma / 2);
 }
 
 }  // namespace lccp

@@ -287,17 +287,31 @@ void decode_ascii(std::string_view name, std::string_view text, std::uint64_t po
 
 // ------------------------------------------------------------------ writing
 
+// The fields of a labelled PCD: x y z [rgb] label [object], 4 bytes each.
+struct PcdColumns {
+  const PointCloud& cloud;
+  const Labels& labels;
+  const Labels* objects;  // null: no object field
+
+  std::size_t count() const { return (cloud.has_colors() ? 5 : 4) + (objects ? 1 : 0); }
+};
+
 // The header PCL's PCDWriter::generateHeaderBinary (and ...BinaryCompressed,
 // the same lines) writes for these fields, up to and including POINTS: rgb is
 // a float field holding 0xAARRGGBB with alpha 255, the bytes of PCL's
-// PointXYZRGB.
-std::string labelled_pcd_header(const PointCloud& cloud) {
-  std::string header = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
-  header += cloud.has_colors() ? "FIELDS x y z rgb label\nSIZE 4 4 4 4 4\nTYPE F F F F U\nCOUNT 1 1 1 1 1\n"
-                               : "FIELDS x y z label\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n";
-  header += "WIDTH " + std::to_string(cloud.width) + "\nHEIGHT " + std::to_string(cloud.height) +
-            "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(cloud.size()) + "\n";
-  return header;
+// PointXYZRGB; label and object are uint32 (TYPE U, SIZE 4), as PCL's
+// PointXYZRGBL label.
+std::string labelled_pcd_header(const PcdColumns& columns) {
+  const PointCloud& cloud = columns.cloud;
+  std::string fields = "x y z", types = "F F F";
+  if (cloud.has_colors()) fields += " rgb", types += " F";
+  fields += " label", types += " U";
+  if (columns.objects) fields += " object", types += " U";
+  std::string sizes = "4", counts = "1";
+  for (std::size_t k = 1; k < columns.count(); ++k) sizes += " 4", counts += " 1";
+  return "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS " + fields + "\nSIZE " + sizes +
+         "\nTYPE " + types + "\nCOUNT " + counts + "\nWIDTH " + std::to_string(cloud.width) + "\nHEIGHT " +
+         std::to_string(cloud.height) + "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(cloud.size()) + "\n";
 }
 
 template <typename T>
@@ -309,13 +323,16 @@ void append(std::vector<std::uint8_t>& out, T value) {
 
 std::uint32_t packed_rgb(const PointCloud& cloud, std::size_t i) { return 0xFF000000u | cloud.colors[i]; }
 
-// DATA binary: x y z [rgb] label of each point in turn (host byte order, as PCL).
-void append_binary(const PointCloud& cloud, const Labels& labels, std::vector<std::uint8_t>& out) {
-  out.reserve(out.size() + (cloud.has_colors() ? 20 : 16) * cloud.size());
+// DATA binary: x y z [rgb] label [object] of each point in turn (host byte
+// order, as PCL).
+void append_binary(const PcdColumns& columns, std::vector<std::uint8_t>& out) {
+  const PointCloud& cloud = columns.cloud;
+  out.reserve(out.size() + 4 * columns.count() * cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (int k = 0; k < 3; ++k) append(out, cloud.points[i][k]);
     if (cloud.has_colors()) append(out, packed_rgb(cloud, i));
-    append(out, labels[i]);
+    append(out, columns.labels[i]);
+    if (columns.objects) append(out, (*columns.objects)[i]);
   }
 }
 
@@ -324,10 +341,11 @@ void append_binary(const PointCloud& cloud, const Labels& labels, std::vector<st
 constexpr std::uint64_t kMaxCompressedRaw = std::uint64_t{0xFFFFFFFFu} * 2 / 3;
 
 // The fields as writeBinaryCompressed lays them out before compressing: one
-// array per field in FIELDS order, all x, then all y, z, [rgb,] label.
-std::vector<std::uint8_t> field_arrays(const PointCloud& cloud, const Labels& labels) {
+// array per field in FIELDS order, all x, then all y, z, [rgb,] label[, object].
+std::vector<std::uint8_t> field_arrays(const PcdColumns& columns) {
+  const PointCloud& cloud = columns.cloud;
   const std::size_t n = cloud.size();
-  std::vector<std::uint8_t> raw((cloud.has_colors() ? 5 : 4) * 4 * n);
+  std::vector<std::uint8_t> raw(columns.count() * 4 * n);
   std::uint8_t* out = raw.data();
   const auto put = [&out](auto value) {
     static_assert(sizeof value == 4);
@@ -338,18 +356,20 @@ std::vector<std::uint8_t> field_arrays(const PointCloud& cloud, const Labels& la
     for (std::size_t i = 0; i < n; ++i) put(cloud.points[i][k]);
   if (cloud.has_colors())
     for (std::size_t i = 0; i < n; ++i) put(packed_rgb(cloud, i));
-  for (std::size_t i = 0; i < n; ++i) put(labels[i]);
+  for (std::size_t i = 0; i < n; ++i) put(columns.labels[i]);
+  if (columns.objects)
+    for (std::size_t i = 0; i < n; ++i) put((*columns.objects)[i]);
   return raw;
 }
 
 // DATA binary_compressed: uint32 compressed size, uint32 raw size (host
 // order), then the LZF stream of field_arrays.
-void append_compressed(const PointCloud& cloud, const Labels& labels, std::vector<std::uint8_t>& out) {
-  const std::uint64_t raw_size = std::uint64_t{cloud.has_colors() ? 20u : 16u} * cloud.size();
+void append_compressed(const PcdColumns& columns, std::vector<std::uint8_t>& out) {
+  const std::uint64_t raw_size = std::uint64_t{4} * columns.count() * columns.cloud.size();
   if (raw_size > kMaxCompressedRaw)
     throw Error("too many points for a binary_compressed PCD (" + std::to_string(raw_size) +
                 " bytes of data, PCL's limit is " + std::to_string(kMaxCompressedRaw) + ")");
-  const std::vector<std::uint8_t> lzf = lzf_compress(field_arrays(cloud, labels));
+  const std::vector<std::uint8_t> lzf = lzf_compress(field_arrays(columns));
   append(out, static_cast<std::uint32_t>(lzf.size()));  // <= raw x 33/32 + 1: fits
   append(out, static_cast<std::uint32_t>(raw_size));
   out.insert(out.end(), lzf.begin(), lzf.end());
@@ -357,14 +377,25 @@ void append_compressed(const PointCloud& cloud, const Labels& labels, std::vecto
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding) {
-  check_labelled_cloud(cloud, labels);
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, const Labels* objects,
+                                              PcdEncoding encoding) {
+  check_labelled_cloud(cloud, labels, objects);
+  const PcdColumns columns{cloud, labels, objects};
   const bool compressed = encoding == PcdEncoding::binary_compressed;
-  const std::string header = labelled_pcd_header(cloud) + (compressed ? "DATA binary_compressed\n" : "DATA binary\n");
+  const std::string header = labelled_pcd_header(columns) + (compressed ? "DATA binary_compressed\n" : "DATA binary\n");
   std::vector<std::uint8_t> out(header.begin(), header.end());
-  if (compressed) append_compressed(cloud, labels, out);
-  else append_binary(cloud, labels, out);
+  if (compressed) append_compressed(columns, out);
+  else append_binary(columns, out);
   return out;
+}
+
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding) {
+  return encode_labelled_pcd(cloud, labels, nullptr, encoding);
+}
+
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
+                                              const Labels* objects) {
+  return encode_labelled_pcd(cloud, labels, objects, encoding);
 }
 
 LabelledCloud parse_pcd(std::span<const std::uint8_t> bytes, std::string_view name, const ReadLimits& limits) {

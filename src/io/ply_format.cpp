@@ -351,11 +351,15 @@ constexpr const char* kCameraElement =
     "property float centerx\nproperty float centery\n"
     "property int viewportx\nproperty int viewporty\nproperty float k1\nproperty float k2\n";
 
-std::string labelled_ply_header(const PointCloud& cloud) {
+// Greg Turk's PLY format: a vertex element's properties in the order its
+// records store them; `object` (uint) is one more property after `label`.
+std::string labelled_ply_header(const PointCloud& cloud, bool objects) {
   std::string header = "ply\nformat binary_little_endian 1.0\ncomment LCCP Stream labelled cloud\nelement vertex " +
                        std::to_string(cloud.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
   if (cloud.has_colors()) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-  return header + "property uint label\n" + kCameraElement + "end_header\n";
+  header += "property uint label\n";
+  if (objects) header += "property uint object\n";
+  return header + kCameraElement + "end_header\n";
 }
 
 void put_le32(std::vector<std::uint8_t>& out, std::uint32_t value) {
@@ -379,19 +383,21 @@ void put_camera(std::vector<std::uint8_t>& out, const PointCloud& cloud) {
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Labels& labels) {
-  check_labelled_cloud(cloud, labels);
+std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Labels& labels, const Labels* objects) {
+  check_labelled_cloud(cloud, labels, objects);
   constexpr std::uint32_t kMaxInt = 0x7FFFFFFF;
   if (cloud.width > kMaxInt || cloud.height > kMaxInt)
     throw Error("width or height beyond 2^31 - 1 (a PLY camera viewport is an int)");
-  const std::string header = labelled_ply_header(cloud);
+  const std::string header = labelled_ply_header(cloud, objects != nullptr);
   std::vector<std::uint8_t> out(header.begin(), header.end());
-  out.reserve(header.size() + (cloud.has_colors() ? 19 : 16) * cloud.size() + 21 * 4);
+  const std::size_t step = (cloud.has_colors() ? 19 : 16) + (objects ? 4 : 0);
+  out.reserve(header.size() + step * cloud.size() + 21 * 4);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (int k = 0; k < 3; ++k) put_float(out, cloud.points[i][k]);
     if (cloud.has_colors())
       for (int shift = 16; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(cloud.colors[i] >> shift));
     put_le32(out, labels[i]);
+    if (objects) put_le32(out, (*objects)[i]);
   }
   put_camera(out, cloud);
   return out;

@@ -191,8 +191,9 @@ std::string truncated(std::uint64_t have, std::uint64_t need, const char* unit) 
   return "truncated data (" + std::to_string(have) + " of " + std::to_string(need) + " " + unit + ")";
 }
 
-void check_labelled_cloud(const PointCloud& cloud, const Labels& labels) {
+void check_labelled_cloud(const PointCloud& cloud, const Labels& labels, const Labels* objects) {
   if (labels.size() != cloud.size()) throw Error("labels and points differ in number");
+  if (objects && objects->size() != cloud.size()) throw Error("objects and points differ in number");
   if (std::uint64_t{cloud.width} * cloud.height != cloud.size()) throw Error("width x height != number of points");
   if (cloud.has_colors() && cloud.colors.size() != cloud.size()) throw Error("colours and points differ in number");
   if (cloud.size() == 0) throw Error("no points to write");

@@ -68,8 +68,8 @@ std::string one_line(std::string_view text);
 // "truncated data (HAVE of NEED UNIT)"
 std::string truncated(std::uint64_t have, std::uint64_t need, const char* unit);
 
-// Throws lccp::Error (one line, no path) if the labels, colours or width x
-// height do not match the points, or there are none.
-void check_labelled_cloud(const PointCloud& cloud, const Labels& labels);
+// Throws lccp::Error (one line, no path) if the labels, the objects (if
+// given), colours or width x height do not match the points, or there are none.
+void check_labelled_cloud(const PointCloud& cloud, const Labels& labels, const Labels* objects = nullptr);
 
 }  // namespace lccp::io_detail

@@ -50,24 +50,37 @@ LabelledCloud parse_ply(std::span<const std::uint8_t> bytes, std::string_view na
 // `binary_compressed` one LZF-compressed array per field (writeBinaryCompressed).
 enum class PcdEncoding { binary, binary_compressed };
 
-// A PCD of x y z [rgb] label (float metres; rgb the float holding 0xFFRRGGBB,
-// as PCL's PointXYZRGB; uint32 label), organized layout kept, with the header
-// PCL's PCDWriter writes for these fields. `binary` output is what this
-// function wrote before it had an encoding; it is the default so that
-// existing callers keep their bytes. Throws lccp::Error if the labels,
+// A PCD of x y z [rgb] label [object] (float metres; rgb the float holding
+// 0xFFRRGGBB, as PCL's PointXYZRGB; uint32 label and object), organized
+// layout kept, with the header PCL's PCDWriter writes for these fields.
+// `label` is the finest level (a part's id with two levels), so tools that
+// read PCL's `label` field see the segments; `object`, written when `objects`
+// is given (SceneSegmentation::objects: the id of each point's object), is one
+// more uint32 field (PCD v0.7 allows any field name). `binary` output is what
+// this function wrote before it had an encoding; it is the default so that
+// existing callers keep their bytes, and without `objects` the bytes are those
+// of the overload without it. Throws lccp::Error if the labels, objects,
 // colours or width x height do not match the points, or there are none, or
-// (binary_compressed) the data exceeds PCL's limit of 2863311530 bytes
-// (its two uint32 sizes must hold 3/2 of it).
+// (binary_compressed) the data exceeds PCL's limit of 2863311530 bytes (its
+// two uint32 sizes must hold 3/2 of it).
 std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels,
                                               PcdEncoding encoding = PcdEncoding::binary);
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, const Labels* objects,
+                                              PcdEncoding encoding = PcdEncoding::binary);
+// The same, the encoding before the objects (as with every function here
+// that takes both).
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
+                                              const Labels* objects);
 
 // A binary_little_endian 1.0 PLY: one `vertex` element of x y z (float,
 // metres; NaN points written as NaN, so there is a vertex per point), red
-// green blue (uchar, if the cloud has colours) and label (uint), then PCL's
+// green blue (uchar, if the cloud has colours), label (uint) and, with
+// `objects`, object (uint: the id of each point's object), then PCL's
 // PLYWriter `face` (empty) and `camera` elements, whose viewportx/viewporty
 // keep width and height. Throws lccp::Error as encode_labelled_pcd, or if
 // width or height exceed 2^31 - 1 (the camera's int fields).
-std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Labels& labels);
+std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Labels& labels,
+                                              const Labels* objects = nullptr);
 
 // encode_labelled_pcd or encode_labelled_ply by the extension of
 // `path_for_extension` (.pcd or .ply, any case); `encoding` applies to PCD.
@@ -76,32 +89,59 @@ std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Lab
 std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
                                                 const PointCloud& cloud, const Labels& labels,
                                                 PcdEncoding encoding = PcdEncoding::binary_compressed);
+std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
+                                                const PointCloud& cloud, const Labels& labels, const Labels* objects,
+                                                PcdEncoding encoding = PcdEncoding::binary_compressed);
+std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
+                                                const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
+                                                const Labels* objects);
 
 // What a label image shows. labels: label_color per point (black for label
 // 0). overlay: the scene as a grey rendering of its surface (Lambert shading
 // with the light at the camera, normals from neighbouring pixels' points;
 // src/io/label_image.cpp), each labelled point's pixel blended half and half
-// with its label_color; label-0 points grey, NaN points black.
+// with its colour; label-0 points grey, NaN points black.
 enum class LabelImageStyle { labels, overlay };
 
-// A width x height 8-bit RGB PNG of the labels, one pixel per point.
-// Throws lccp::Error for an unorganized cloud or mismatched labels.
+// A width x height 8-bit RGB PNG of the labels, one pixel per point. With
+// `objects` (per point the id of its object, as SceneSegmentation::objects)
+// each point is coloured part_color(object, label): an object's parts share
+// its hue and differ in lightness. Without it the bytes are as before.
+// Throws lccp::Error for an unorganized cloud or mismatched labels or objects.
 std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels,
-                                           LabelImageStyle style = LabelImageStyle::labels);
+                                           LabelImageStyle style = LabelImageStyle::labels,
+                                           const Labels* objects = nullptr);
 
 // The encoders above written with write_file_atomically
 // (lccp/io/atomic_file.hpp): the file appears only when complete. Errors
 // name the path.
 void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
                         PcdEncoding encoding = PcdEncoding::binary);
-void write_labelled_ply(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels);
+void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                        const Labels* objects, PcdEncoding encoding = PcdEncoding::binary);
+void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                        PcdEncoding encoding, const Labels* objects);
+void write_labelled_ply(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                        const Labels* objects = nullptr);
 void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
                           PcdEncoding encoding = PcdEncoding::binary_compressed);
+void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                          const Labels* objects, PcdEncoding encoding = PcdEncoding::binary_compressed);
+void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
+                          PcdEncoding encoding, const Labels* objects);
 void write_label_png(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                     LabelImageStyle style = LabelImageStyle::labels);
+                     LabelImageStyle style = LabelImageStyle::labels, const Labels* objects = nullptr);
 
 // The colour of a label in label images: black for 0, otherwise a fixed,
 // well-spread colour per label.
 std::array<std::uint8_t, 3> label_color(std::uint32_t label);
+
+// The colour of part `part` of object `object` in label images with objects:
+// the object's hue (spread over the ids as label_color's), the part's
+// lightness (one of five levels, neighbouring part ids two or three levels
+// apart), never black or white. Black for part 0; label_color(part) where the
+// part is no object's (object 0) or is the object itself (the support plane,
+// whose part and object ids are the same).
+std::array<std::uint8_t, 3> part_color(std::uint32_t object, std::uint32_t part);
 
 }  // namespace lccp
