@@ -1,15 +1,18 @@
 // What the command line promises a user, through the binary: output formats by
 // extension, no silent fallback to the virtual sensor, counts that add up,
-// truth only for the synthetic scene, one-line errors with documented exit
+// truth only for the synthetic scene and in mOSD's labels, one-line errors with documented exit
 // codes, --version, preset names, folders in and out, label images.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include "cli_runner.hpp"
 #include "lccp/io/cloud_io.hpp"
+#include "lccp/synthetic/tabletop_scene.hpp"
 #include "test_files.hpp"
 
 namespace lccp {
@@ -97,6 +100,42 @@ TEST_F(CliPromisesTest, TruthRefusesARecordingOfAnythingButTheSyntheticScene) {
   const RunResult r = run({"truth", (kRecordings / "mosd_scenes.oni").string(), "-o", out.string()});
   expect_error(r, {"mosd_scenes.oni", "not a recording of the synthetic scene"});
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The truth of the synthetic recording in mOSD's labels: 0 no return, 1 table, 2
+// floor and wall, object n's parts n * 10 + k, the mug's handle (51) its own part.
+TEST_F(CliPromisesTest, TruthOfTheSyntheticRecordingLabelsObjectsAndTheirParts) {
+  const fs::path out = work_ / "truth";
+  expect_success(run({"truth", (kRecordings / "synthetic_tabletop.oni").string(), "-o", out.string()}));
+  const std::set<std::uint32_t> known = {synthetic::kNoReturnLabel, synthetic::kTableLabel,
+                                         synthetic::kBackgroundLabel,  10, 20, 30, 40, 50, 51};
+  const std::set<std::string> files = list_dir(out);
+  EXPECT_EQ(files.size(), 60u);
+  std::size_t frames_with_handle = 0, sample = 0;
+  for (const std::string& name : files) {
+    if (sample++ % 5 != 0) continue;  // every 5th frame: 0, 5, ..., 55
+    const LabelledCloud truth = read_cloud(out / name);
+    ASSERT_TRUE(truth.labels) << name;
+    std::size_t handle = 0;
+    for (const std::uint32_t label : *truth.labels) {
+      ASSERT_TRUE(known.count(label)) << name << " label " << label;
+      handle += label == synthetic::object_label(synthetic::kMugObject, synthetic::kHandlePart);
+    }
+    frames_with_handle += handle >= 200;  // seen side-on in the first 1.5 s
+  }
+  EXPECT_GE(frames_with_handle, 3u);
+  // The truth as a prediction: perfect for the parts; at object level the
+  // handle is a segment split off the mug (5 objects a frame).
+  const RunResult parts = run({"eval", out.string(), out.string(), "--ignore", "0-9", "--json"});
+  expect_success(parts);
+  EXPECT_DOUBLE_EQ(json_number(parts.out, "wov"), 1.0) << parts.out;
+  EXPECT_GT(json_number(parts.out, "ground_truth_regions"), 300) << parts.out;
+  const RunResult objects = run({"eval", out.string(), out.string(), "--ignore", "0-9", "--object-level", "--json"});
+  expect_success(objects);
+  EXPECT_DOUBLE_EQ(json_number(objects.out, "ground_truth_regions"), 300) << objects.out;
+  EXPECT_LT(json_number(objects.out, "wov"), 1.0) << objects.out;
+  EXPECT_GT(json_number(objects.out, "wov"), 0.97) << objects.out;
+  EXPECT_DOUBLE_EQ(json_number(objects.out, "objects_lost"), 0) << objects.out;
 }
 
 TEST_F(CliPromisesTest, UsageErrorsAreOneLineWithExitTwo) {

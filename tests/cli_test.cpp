@@ -318,6 +318,99 @@ TEST_F(CliTest, EvalWithEmptyIgnoreRangeFails) {
                {"--ignore", "9-0"});
 }
 
+// A labelled cloud of labels.size() points along x, for eval's hand-made scenes.
+void write_labels(const fs::path& path, const Labels& labels) {
+  PointCloud cloud;
+  cloud.width = static_cast<std::uint32_t>(labels.size());
+  for (std::size_t k = 0; k < labels.size(); ++k) cloud.points.emplace_back(0.01f * float(k), 0.0f, 1.0f);
+  write_labelled_pcd(path, cloud, labels);
+}
+
+// A mug (body 50, handle 51) and a can (30) on a table (1); the prediction splits
+// the handle off, and the second one also merges the can into the table.
+const Labels kMugTruth = {1, 1, 1, 50, 50, 50, 50, 51, 51, 30, 30};
+const Labels kHandleSplitOff = {1, 1, 1, 4, 4, 4, 4, 5, 5, 6, 6};
+const Labels kCanInTheTable = {1, 1, 1, 4, 4, 4, 4, 5, 5, 1, 1};
+
+TEST_F(CliTest, EvalObjectLevelMergesTheGroundTruthsParts) {
+  write_labels(work_ / "truth.pcd", kMugTruth);
+  write_labels(work_ / "pred.pcd", kHandleSplitOff);
+  const std::string pred = (work_ / "pred.pcd").string(), truth = (work_ / "truth.pcd").string();
+  const RunResult parts = run({"eval", pred, truth, "--ignore", "0-9", "--json"});
+  expect_success(parts);
+  EXPECT_DOUBLE_EQ(json_number(parts.out, "wov"), 1.0) << parts.out;
+  EXPECT_DOUBLE_EQ(json_number(parts.out, "ground_truth_regions"), 3) << parts.out;
+  EXPECT_NE(parts.out.find("\"object_level\": false"), std::string::npos) << parts.out;
+  // The mug is one region of 6 points, its best segment 4 of them: WOv = (6 * 4/6 + 2) / 8.
+  const RunResult objects = run({"eval", pred, truth, "--ignore", "0-9", "--object-level", "--json"});
+  expect_success(objects);
+  EXPECT_DOUBLE_EQ(json_number(objects.out, "wov"), 0.75) << objects.out;
+  EXPECT_DOUBLE_EQ(json_number(objects.out, "ground_truth_regions"), 2) << objects.out;
+  EXPECT_NE(objects.out.find("\"object_level\": true"), std::string::npos) << objects.out;
+  EXPECT_DOUBLE_EQ(json_number(objects.out, "objects_lost"), 0) << objects.out;
+  // Text: the scores line as before, then the objects lost.
+  const RunResult text = run({"eval", pred, truth, "--ignore", "0-9", "--object-level"});
+  expect_success(text);
+  EXPECT_TRUE(std::regex_search(text.out, std::regex("^WOv 0\\.7500  tp .*\\(2 regions, 11 points\\)\n"
+                                                     "objects lost into the support: 0\n$")))
+      << text.out;
+}
+
+TEST_F(CliTest, EvalCountsObjectsLostIntoTheTable) {
+  write_labels(work_ / "truth.pcd", kMugTruth);
+  write_labels(work_ / "pred.pcd", kCanInTheTable);
+  const std::string pred = (work_ / "pred.pcd").string(), truth = (work_ / "truth.pcd").string();
+  for (const bool object_level : {false, true}) {
+    std::vector<std::string> args = {"eval", pred, truth, "--ignore", "0-9"};
+    if (object_level) args.push_back("--object-level");
+    const RunResult text = run(args);
+    expect_success(text);
+    EXPECT_NE(text.out.find("\nobjects lost into the support: 1 (30)\n"), std::string::npos) << text.out;
+    args.push_back("--json");
+    const RunResult json = run(args);
+    EXPECT_DOUBLE_EQ(json_number(json.out, "objects_lost"), 1) << json.out;
+    EXPECT_NE(json.out.find("\"lost_labels\": [30]}"), std::string::npos) << json.out;
+  }
+  // A support range without the table's label 1: nothing is lost into it.
+  const RunResult wall = run({"eval", pred, truth, "--support", "2-9", "--json"});
+  EXPECT_DOUBLE_EQ(json_number(wall.out, "objects_lost"), 0) << wall.out;
+}
+
+TEST_F(CliTest, EvalOfFoldersNamesTheFramesThatLostObjects) {
+  for (const char* folder : {"pred", "truth"}) fs::create_directory(work_ / folder);
+  write_labels(work_ / "truth" / "a.pcd", kMugTruth);
+  write_labels(work_ / "truth" / "b.pcd", kMugTruth);
+  write_labels(work_ / "pred" / "a.pcd", kHandleSplitOff);
+  write_labels(work_ / "pred" / "b.pcd", kCanInTheTable);
+  const std::string pred = (work_ / "pred").string(), truth = (work_ / "truth").string();
+  const RunResult text = run({"eval", pred, truth, "--ignore", "0-9", "--object-level"});
+  expect_success(text);
+  EXPECT_TRUE(std::regex_search(text.out, std::regex("^b\\.pcd: objects lost into the support: 1 \\(30\\)\n"
+                                                     "mean over 2 frames: WOv [0-9.]+  tp .*\n"
+                                                     "objects lost into the support: 1\n$")))
+      << text.out;
+  const RunResult json = run({"eval", pred, truth, "--ignore", "0-9", "--json"});
+  expect_success(json);
+  EXPECT_DOUBLE_EQ(json_number(json.out, "objects_lost"), 1) << json.out;
+  EXPECT_DOUBLE_EQ(json_number(json.out, "frames"), 2) << json.out;
+  EXPECT_NE(json.out.find("\"lost_frames\": {\"b.pcd\": [30]}"), std::string::npos) << json.out;
+}
+
+TEST_F(CliTest, EvalObjectLevelOfGroundTruthAgainstItselfIsPerfect) {
+  const RunResult r =
+      run({"eval", kOrganizedScene.string(), kOrganizedScene.string(), "--ignore", "0-9", "--object-level", "--json"});
+  expect_success(r);
+  EXPECT_DOUBLE_EQ(json_number(r.out, "wov"), 1.0) << r.out;
+  EXPECT_DOUBLE_EQ(json_number(r.out, "objects_lost"), 0) << r.out;
+}
+
+TEST_F(CliTest, EvalWithSupportRangeHoldingZeroFails) {
+  expect_error(run({"eval", kOrganizedScene.string(), kOrganizedScene.string(), "--support", "0-9"}),
+               {"--support", "0-9"});
+  expect_error(run({"eval", kOrganizedScene.string(), kOrganizedScene.string(), "--support", "table"}),
+               {"--support", "table"});
+}
+
 // --- D. usage errors ----------------------------------------------------------------
 
 TEST_F(CliTest, UsageErrors) {

@@ -1,8 +1,10 @@
 // Hand-computed checks of the Appendix B scores (eqs. 6-8) and the adjusted Rand index.
 #include "lccp/metrics/scores.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -173,6 +175,119 @@ TEST(ScoreSegmentation, NothingLeftToScoreThrows) {
   }
   EXPECT_THROW(score_segmentation({1, 2}, {20, 30}, cloud(2, {0, 1})), Error);
   EXPECT_THROW(score_segmentation({}, {}, {}), Error);
+}
+
+// --- object level: ground-truth parts n * 10 + k merged per object n ------------------
+
+TEST(MergeObjectParts, PartsBecomeTheirObjectAndTheSupportOneRegion) {
+  const Labels gt = {0, 1, 2, 9, 10, 19, 20, 50, 51, 59, 101};
+  EXPECT_EQ(merge_object_parts(gt), (Labels{0, 1, 1, 1, 10, 10, 20, 50, 50, 50, 100}));
+  // Another support range: labels outside it below 10 stay as they are.
+  EXPECT_EQ(merge_object_parts({0, 1, 2, 3, 51}, LabelRange{2, 3}), (Labels{0, 1, 2, 2, 50}));
+  EXPECT_THROW(merge_object_parts({1}, LabelRange{0, 9}), Error);  // 0 is no data, never support
+}
+
+// A mug (body 50: 4 points, handle 51: 2) and a can (30: 2 points) on a table
+// (1 and 2: 3 points), the table ignored. LCCP splits the handle off: perfect
+// for the parts, over-segmentation for the objects (paper Sec. III.B).
+TEST(ScoreObjects, HandleSplitOffIsPerfectForPartsAndOverSegmentationForObjects) {
+  const Labels gt = {1, 1, 2, 50, 50, 50, 50, 51, 51, 30, 30};
+  const Labels split = {1, 1, 1, 4, 4, 4, 4, 5, 5, 6, 6};
+  const LabelRange table{0, 9};
+  const SegmentationScores parts = score_segmentation(split, gt, cloud(11), table);
+  expect_perfect(parts);
+  EXPECT_EQ(parts.ground_truth_regions, 3u);
+
+  const SegmentationScores objects = score_objects(split, gt, cloud(11), table);
+  EXPECT_EQ(objects.ground_truth_regions, 2u);
+  // The mug: 6 points, best segment 4 (IoU 4/6, TP 4, FN 2); the can perfect.
+  // WOv = (6 * 4/6 + 2 * 1) / 8 = 3/4.
+  EXPECT_NEAR(objects.weighted_overlap, 0.75, kTol);
+  EXPECT_NEAR(objects.true_positive, (4.0 / 6 + 1.0) / 2, kTol);
+  EXPECT_NEAR(objects.false_negative, (2.0 / 6) / 2, kTol);
+  EXPECT_NEAR(objects.false_positive, 0.0, kTol);
+  EXPECT_NEAR(objects.over_segmentation, 1.0 - 6.0 / 8, kTol);
+  EXPECT_NEAR(objects.under_segmentation, 0.0, kTol);
+  EXPECT_EQ(objects.scored_points, 11u);
+}
+
+TEST(ScoreObjects, OneSegmentPerObjectIsPerfectForObjectsOnly) {
+  const Labels gt = {1, 1, 2, 50, 50, 50, 50, 51, 51, 30, 30};
+  const Labels whole = {1, 1, 1, 4, 4, 4, 4, 4, 4, 6, 6};
+  const LabelRange table{0, 9};
+  expect_perfect(score_objects(whole, gt, cloud(11), table));
+  // Parts: body and handle share segment 4 (6 points): OV = 4/6 and 2/6.
+  // WOv = (4 * 4/6 + 2 * 2/6 + 2 * 1) / 8 = 2/3.
+  EXPECT_NEAR(score_segmentation(whole, gt, cloud(11), table).weighted_overlap, 2.0 / 3, kTol);
+}
+
+TEST(ScoreObjects, SupportLabelsAreOneRegionWhenNotIgnored) {
+  // Table 1 (3 points) and wall 2 (2 points) in segments of their own: two
+  // perfect regions, or one region (1) split 3 / 2 at object level.
+  const Labels gt = {1, 1, 1, 2, 2, 20, 20};
+  const Labels pred = {7, 7, 7, 8, 8, 9, 9};
+  EXPECT_EQ(score_segmentation(pred, gt, cloud(7)).ground_truth_regions, 3u);
+  const SegmentationScores objects = score_objects(pred, gt, cloud(7));
+  EXPECT_EQ(objects.ground_truth_regions, 2u);
+  // Support: 5 points, OV 3/5; object 20 perfect: WOv = (5 * 3/5 + 2) / 7 = 5/7.
+  EXPECT_NEAR(objects.weighted_overlap, 5.0 / 7, kTol);
+  EXPECT_EQ(objects.objects_lost, 0u);  // the support is never lost into itself
+}
+
+// --- objects lost into the support ------------------------------------------------
+
+TEST(ObjectsLost, RegionSwallowedByTheTableSegmentIsLost) {
+  // Table (1): 6 points in segment 1 with all 3 of object 20; object 30 alone in
+  // segment 2; object 40 (4 points) shares segment 3 with 3 table points (fewer
+  // than its own: not lost).
+  const Labels gt = {1, 1, 1, 1, 1, 1, 20, 20, 20, 30, 30, 40, 40, 40, 40, 1, 1, 1};
+  const Labels pred = {1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 3, 3, 3, 3, 3, 3, 3};
+  const SegmentationScores s = score_segmentation(pred, gt, cloud(18), LabelRange{0, 9});
+  EXPECT_EQ(s.objects_lost, 1u);
+  EXPECT_EQ(s.lost_labels, (std::vector<std::uint32_t>{20}));
+  // The table not ignored: still only object 20 (the table region is never lost).
+  EXPECT_EQ(score_segmentation(pred, gt, cloud(18)).lost_labels, (std::vector<std::uint32_t>{20}));
+}
+
+TEST(ObjectsLost, NoReturnAndNonFinitePointsAreNotSupport) {
+  // Object 50 (2 points) shares segment 5 with 1 table point, 3 finite points
+  // of label 0 and 2 NaN table points: 1 support point < 2, not lost.
+  const Labels gt = {50, 50, 1, 0, 0, 0, 1, 1, 1, 1};
+  const Labels pred = {5, 5, 5, 5, 5, 5, 5, 5, 6, 6};
+  const SegmentationScores s = score_segmentation(pred, gt, cloud(10, {6, 7}), LabelRange{0, 9});
+  EXPECT_EQ(s.objects_lost, 0u);
+  EXPECT_TRUE(s.lost_labels.empty());
+  // The two finite table points of segment 6 moved to segment 5: 3 > 2, lost.
+  const Labels merged = {5, 5, 5, 5, 5, 5, 5, 5, 5, 5};
+  EXPECT_EQ(score_segmentation(merged, gt, cloud(10, {6, 7}), LabelRange{0, 9}).objects_lost, 1u);
+}
+
+TEST(ObjectsLost, SupportRangeIsAParameter) {
+  // Object 60 (2 points) in one segment with 3 wall points (label 2).
+  const Labels gt = {60, 60, 2, 2, 2, 1, 1};
+  const Labels pred = {4, 4, 4, 4, 4, 5, 5};
+  EXPECT_EQ(score_segmentation(pred, gt, cloud(7), LabelRange{0, 9}).lost_labels, (std::vector<std::uint32_t>{60}));
+  EXPECT_EQ(score_segmentation(pred, gt, cloud(7), LabelRange{0, 9}, LabelRange{1, 1}).objects_lost, 0u);
+  EXPECT_THROW(score_segmentation(pred, gt, cloud(7), LabelRange{0, 9}, LabelRange{0, 9}), Error);
+}
+
+TEST(ObjectsLost, CountedPerRegionOrPerObject) {
+  // The mug's body (50: 3 points) in the table segment with 4 table points, its
+  // handle (51: 3 points) a segment of its own. Parts: the body is lost, the
+  // handle not. Objects: the mug (6 points) meets segment 1 and segment 2 with
+  // 3 points each; the tie goes to the smaller label, 1, holding 4 support
+  // points > 3: lost, as one object.
+  const Labels gt = {1, 1, 1, 1, 50, 50, 50, 51, 51, 51};
+  const Labels pred = {1, 1, 1, 1, 1, 1, 1, 2, 2, 2};
+  const LabelRange table{0, 9};
+  EXPECT_EQ(score_segmentation(pred, gt, cloud(10), table).lost_labels, (std::vector<std::uint32_t>{50}));
+  const SegmentationScores objects = score_objects(pred, gt, cloud(10), table);
+  EXPECT_EQ(objects.objects_lost, 1u);
+  EXPECT_EQ(objects.lost_labels, (std::vector<std::uint32_t>{50}));
+  // Several lost regions are listed in ascending order.
+  const Labels two = {1, 1, 1, 1, 1, 1, 30, 20, 20, 40};
+  const Labels swallowed = {1, 1, 1, 1, 1, 1, 1, 1, 1, 2};
+  EXPECT_EQ(score_segmentation(swallowed, two, cloud(10), table).lost_labels, (std::vector<std::uint32_t>{20, 30}));
 }
 
 }  // namespace

@@ -1,9 +1,13 @@
 // lccp eval PRED GT: the paper's Appendix B scores of a labelled cloud, or the
-// mean over the frames of two folders (files paired by name).
+// mean over the frames of two folders (files paired by name), against the
+// ground truth's regions or (--object-level) its objects, and the objects lost
+// into the support.
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "lccp/error.hpp"
@@ -17,25 +21,46 @@ struct EvalOptions {
   std::string predicted;
   std::string ground_truth;
   std::string ignore;
+  std::string support = "1-9";
+  bool object_level = false;
   bool json = false;
 };
 
-std::uint32_t parse_label(const std::string& text) {
+// What scoring one pair of clouds takes besides the clouds.
+struct Scoring {
+  std::optional<LabelRange> ignored;
+  LabelRange support = kSupportLabels;
+  bool object_level = false;
+};
+
+std::uint32_t parse_label(const std::string& text, const std::string& option) {
   std::uint32_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc{} || end != text.data() + text.size() || text.empty()) {
-    throw Error("--ignore expects a label or a range like 0-9, got '" + text + "'");
+    throw Error(option + " expects a label or a range like 0-9, got '" + text + "'");
   }
   return value;
 }
 
-std::optional<LabelRange> parse_range(const std::string& text) {
+std::optional<LabelRange> parse_range(const std::string& text, const std::string& option) {
   if (text.empty()) return std::nullopt;
   const auto dash = text.find('-');
-  if (dash == std::string::npos) return LabelRange{parse_label(text), parse_label(text)};
-  LabelRange range{parse_label(text.substr(0, dash)), parse_label(text.substr(dash + 1))};
-  if (range.first > range.last) throw Error("--ignore range '" + text + "' is empty");
+  if (dash == std::string::npos) return LabelRange{parse_label(text, option), parse_label(text, option)};
+  LabelRange range{parse_label(text.substr(0, dash), option), parse_label(text.substr(dash + 1), option)};
+  if (range.first > range.last) throw Error(option + " range '" + text + "' is empty");
   return range;
+}
+
+Scoring scoring_of(const EvalOptions& options) {
+  Scoring scoring;
+  scoring.ignored = parse_range(options.ignore, "--ignore");
+  const std::optional<LabelRange> support = parse_range(options.support, "--support");
+  if (!support || support->first == 0) {
+    throw Error("--support must name labels from 1 up (0 is no data), got '" + options.support + "'");
+  }
+  scoring.support = *support;
+  scoring.object_level = options.object_level;
+  return scoring;
 }
 
 Labels labels_of(LabelledCloud& cloud, const std::string& path) {
@@ -43,24 +68,66 @@ Labels labels_of(LabelledCloud& cloud, const std::string& path) {
   return std::move(*cloud.labels);
 }
 
-void print_scores(const SegmentationScores& s, bool json) {
+// "40, 50" (text) or "[40, 50]" (JSON).
+std::string label_list(const std::vector<std::uint32_t>& labels, bool json) {
+  std::string text = json ? "[" : "";
+  for (std::size_t i = 0; i < labels.size(); ++i) text += (i ? ", " : "") + std::to_string(labels[i]);
+  return json ? text + "]" : text;
+}
+
+// A file name as a JSON string (quotes, backslashes and control characters escaped).
+std::string json_string(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(c));
+      quoted += escape;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "\"";
+}
+
+// The regions lost into the support, their number and labels: "objects lost
+// into the support: 2 (40, 50)".
+std::string lost_text(const SegmentationScores& s) {
+  std::string text = "objects lost into the support: " + std::to_string(s.objects_lost);
+  return s.lost_labels.empty() ? text : text + " (" + label_list(s.lost_labels, false) + ")";
+}
+
+// The scores as JSON members, without braces; `lost` lists the lost labels
+// (one cloud) or the frames that lost some (folders).
+std::string json_members(const SegmentationScores& s, bool object_level, const std::string& lost) {
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "\"wov\": %.6f, \"tp\": %.6f, \"fp\": %.6f, \"fn\": %.6f, \"fos\": %.6f, \"fus\": %.6f, "
+                "\"ari\": %.6f, \"ground_truth_regions\": %u, \"scored_points\": %llu, \"object_level\": %s, "
+                "\"objects_lost\": %u, ",
+                s.weighted_overlap, s.true_positive, s.false_positive, s.false_negative, s.over_segmentation,
+                s.under_segmentation, s.adjusted_rand_index, s.ground_truth_regions,
+                static_cast<unsigned long long>(s.scored_points), object_level ? "true" : "false", s.objects_lost);
+  return text + lost;
+}
+
+void print_scores(const SegmentationScores& s, bool json, bool object_level) {
   if (json) {
-    std::printf(
-        "{\"wov\": %.6f, \"tp\": %.6f, \"fp\": %.6f, \"fn\": %.6f, \"fos\": %.6f, \"fus\": %.6f, \"ari\": %.6f, "
-        "\"ground_truth_regions\": %u, \"scored_points\": %llu}\n",
-        s.weighted_overlap, s.true_positive, s.false_positive, s.false_negative, s.over_segmentation,
-        s.under_segmentation, s.adjusted_rand_index, s.ground_truth_regions,
-        static_cast<unsigned long long>(s.scored_points));
+    std::printf("{%s}\n", json_members(s, object_level, "\"lost_labels\": " + label_list(s.lost_labels, true)).c_str());
     return;
   }
   std::printf("WOv %.4f  tp %.4f  fp %.4f  fn %.4f  Fos %.4f  Fus %.4f  ARI %.4f  (%u regions, %llu points)\n",
               s.weighted_overlap, s.true_positive, s.false_positive, s.false_negative, s.over_segmentation,
               s.under_segmentation, s.adjusted_rand_index, s.ground_truth_regions,
               static_cast<unsigned long long>(s.scored_points));
+  std::printf("%s\n", lost_text(s).c_str());
 }
 
 SegmentationScores score_files(const std::string& predicted_path, const std::string& truth_path,
-                               std::optional<LabelRange> ignored) {
+                               const Scoring& scoring) {
   LabelledCloud predicted = read_cloud(predicted_path);
   LabelledCloud truth = read_cloud(truth_path);
   const Labels predicted_labels = labels_of(predicted, predicted_path);
@@ -69,7 +136,8 @@ SegmentationScores score_files(const std::string& predicted_path, const std::str
     throw Error(predicted_path + " has " + std::to_string(predicted.cloud.size()) + " points but " + truth_path +
                 " has " + std::to_string(truth.cloud.size()));
   }
-  return score_segmentation(predicted_labels, truth_labels, truth.cloud.points, ignored);
+  const auto score = scoring.object_level ? score_objects : score_segmentation;
+  return score(predicted_labels, truth_labels, truth.cloud.points, scoring.ignored, scoring.support);
 }
 
 // The .pcd files of a folder, by name.
@@ -81,17 +149,22 @@ std::set<std::string> pcd_names(const std::filesystem::path& folder) {
   return names;
 }
 
-// Every score averaged over the frames of the predicted folder; each needs its
-// namesake in the ground-truth folder.
+// The frames of a folder that lost objects into the support, with their labels.
+using LostByFrame = std::vector<std::pair<std::string, std::vector<std::uint32_t>>>;
+
+// Every score averaged over the frames of the predicted folder (objects_lost
+// summed); each needs its namesake in the ground-truth folder.
 SegmentationScores mean_scores(const std::filesystem::path& predicted, const std::filesystem::path& truth,
-                               std::optional<LabelRange> ignored, std::size_t& frames) {
+                               const Scoring& scoring, std::size_t& frames, LostByFrame& lost) {
   const std::set<std::string> names = pcd_names(predicted);
   if (names.empty()) throw Error("folder " + predicted.string() + " holds no .pcd file");
   const std::set<std::string> truths = pcd_names(truth);
   SegmentationScores mean;
   for (const std::string& name : names) {
     if (!truths.count(name)) throw Error("no ground truth " + (truth / name).string() + " for " + (predicted / name).string());
-    const SegmentationScores s = score_files((predicted / name).string(), (truth / name).string(), ignored);
+    const SegmentationScores s = score_files((predicted / name).string(), (truth / name).string(), scoring);
+    if (s.objects_lost > 0) lost.emplace_back(name, s.lost_labels);
+    mean.objects_lost += s.objects_lost;
     mean.weighted_overlap += s.weighted_overlap;
     mean.true_positive += s.true_positive;
     mean.false_positive += s.false_positive;
@@ -111,20 +184,45 @@ SegmentationScores mean_scores(const std::filesystem::path& predicted, const std
   return mean;
 }
 
+// Folders: text names each frame that lost objects ("NAME: objects lost into
+// the support: 1 (50)"), then the mean and the total over the frames; JSON has
+// the total and "lost_frames": {"NAME": [50], ...}.
+void print_mean(const SegmentationScores& mean, std::size_t frames, const LostByFrame& lost, bool json,
+                bool object_level) {
+  if (json) {
+    std::string members = "\"frames\": " + std::to_string(frames) + ", \"lost_frames\": {";
+    for (std::size_t i = 0; i < lost.size(); ++i) {
+      members += (i ? ", " : "") + json_string(lost[i].first) + ": " + label_list(lost[i].second, true);
+    }
+    std::printf("{%s}\n", json_members(mean, object_level, members + "}").c_str());
+    return;
+  }
+  for (const auto& [name, labels] : lost) {
+    SegmentationScores frame;
+    frame.objects_lost = static_cast<std::uint32_t>(labels.size());
+    frame.lost_labels = labels;
+    std::printf("%s: %s\n", name.c_str(), lost_text(frame).c_str());
+  }
+  std::printf("mean over %zu frames: ", frames);
+  SegmentationScores total = mean;
+  total.lost_labels.clear();  // they are per frame, above
+  print_scores(total, false, object_level);
+}
+
 int run_eval(const EvalOptions& options) {
-  const std::optional<LabelRange> ignored = parse_range(options.ignore);
+  const Scoring scoring = scoring_of(options);
   const bool folders = std::filesystem::is_directory(options.predicted);
   if (folders != std::filesystem::is_directory(options.ground_truth)) {
     throw Error("give two labelled clouds or two folders of them, not one of each");
   }
   if (!folders) {
-    print_scores(score_files(options.predicted, options.ground_truth, ignored), options.json);
+    print_scores(score_files(options.predicted, options.ground_truth, scoring), options.json, options.object_level);
     return 0;
   }
   std::size_t frames = 0;
-  const SegmentationScores mean = mean_scores(options.predicted, options.ground_truth, ignored, frames);
-  if (!options.json) std::printf("mean over %zu frames: ", frames);
-  print_scores(mean, options.json);
+  LostByFrame lost;
+  const SegmentationScores mean = mean_scores(options.predicted, options.ground_truth, scoring, frames, lost);
+  print_mean(mean, frames, lost, options.json, options.object_level);
   return 0;
 }
 
@@ -139,6 +237,11 @@ Subcommand add_eval_command(CLI::App& cli) {
                       "cloud whose label field is the ground truth, or a folder with one of the same name per frame")
       ->required();
   command->add_option("--ignore", options->ignore, "ground-truth labels to leave out, e.g. 0-9 (mOSD's table)");
+  command->add_flag("--object-level", options->object_level,
+                    "score objects: ground-truth parts n*10+k merged per object n, the support labels as one region");
+  command->add_option("--support", options->support,
+                      "ground-truth labels of the support (table), for objects lost into it and --object-level")
+      ->capture_default_str();
   command->add_flag("--json", options->json, "print the scores as one JSON object");
   return {command, [options](std::stop_token) { return run_eval(*options); }};
 }

@@ -1,5 +1,8 @@
 // lccp truth RECORDING.oni -o DIR: the ground truth of a recording of the
-// virtual sensor's synthetic scene, regenerated frame by frame.
+// virtual sensor's synthetic scene, regenerated frame by frame, as labelled PCDs
+// in the OSD / mOSD convention (lccp/synthetic/tabletop_scene.hpp): 0 no
+// return, 1 table, 2 floor and wall, object n's parts n * 10 + k (the mug's
+// handle its own part), so label / 10 is an object id that holds over frames.
 #include <cstdio>
 #include <filesystem>
 
@@ -74,7 +77,10 @@ Subcommand add_truth_command(CLI::App& cli) {
       "truth", "regenerate the ground truth of a recording of the virtual sensor's synthetic scene (for lccp eval)");
   command->add_option("recording", options->recording, "an .oni made with lccp record --uri virtual://synthetic")
       ->required();
-  command->add_option("-o,--output-dir", options->directory, "folder for one labelled .pcd per frame")->required();
+  command->add_option("-o,--output-dir", options->directory,
+                      "folder for one labelled .pcd per frame (0 no return, 1 table, 2 floor and wall, object n's "
+                      "parts n*10+k: the mug's body 50, its handle 51)")
+      ->required();
   command->add_option("--seed", options->seed, "the scene's seed (the URI's seed=, default 1)")->capture_default_str();
   return {command, [options](std::stop_token stop) { return run_truth(*options, stop); }};
 }

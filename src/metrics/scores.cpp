@@ -1,4 +1,5 @@
-// Segmentation scores of the paper's Appendix B (eqs. 6-8) and the adjusted Rand index.
+// Segmentation scores of the paper's Appendix B (eqs. 6-8) and the adjusted Rand index,
+// at region or object level, and the regions lost into the support.
 #include "lccp/metrics/scores.hpp"
 
 #include <algorithm>
@@ -44,6 +45,7 @@ struct Cell {
 struct Contingency {
   DenseCounts regions;   // G_i: finite, non-ignored points per GT label
   DenseCounts segments;  // S_j: all finite points per predicted label (ignored ones included)
+  std::vector<std::uint64_t> support_points;  // per S_j: its finite points with support GT (not 0)
   std::vector<Cell> cells;
   std::uint64_t finite_points = 0;
 };
@@ -54,6 +56,13 @@ struct RegionMatch {
   std::uint64_t largest = 0;    // |TP_i| = |G_i ∩ S_i|
   std::uint32_t segment = 0;    // dense index of S_i
 };
+
+void check_support(LabelRange support) {
+  if (support.first == 0 || support.first > support.last) {
+    throw Error("support label range " + std::to_string(support.first) + "-" + std::to_string(support.last) +
+                " must be non-empty and leave out 0 (no data)");
+  }
+}
 
 void check_sizes(const Labels& predicted, const Labels& ground_truth,
                  const std::vector<Eigen::Vector3f>& points) {
@@ -97,13 +106,15 @@ class CellCounter {
 // One pass over the points: O(points) work, O(cells) memory.
 Contingency tabulate(const Labels& predicted, const Labels& ground_truth,
                      const std::vector<Eigen::Vector3f>& points,
-                     const std::optional<LabelRange>& ignored) {
+                     const std::optional<LabelRange>& ignored, LabelRange support) {
   Contingency table;
   CellCounter counter;
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (!is_finite(points[k])) continue;
     ++table.finite_points;
     const std::uint32_t segment = table.segments.add(predicted[k]);
+    if (segment == table.support_points.size()) table.support_points.push_back(0);
+    table.support_points[segment] += support.contains(ground_truth[k]);  // support.first >= 1: never 0
     if (ignored && ignored->contains(ground_truth[k])) continue;
     counter.add(table.regions.add(ground_truth[k]), segment);
   }
@@ -130,8 +141,8 @@ std::vector<RegionMatch> match_regions(const Contingency& table) {
   return matches;
 }
 
-void add_paper_scores(const Contingency& table, SegmentationScores& scores) {
-  const std::vector<RegionMatch> matches = match_regions(table);
+void add_paper_scores(const Contingency& table, const std::vector<RegionMatch>& matches,
+                      SegmentationScores& scores) {
   double weighted_overlap = 0, tp = 0, fp = 0, fn = 0;
   std::uint64_t n_all = 0, n_true = 0, n_false = 0;
   for (std::size_t i = 0; i < matches.size(); ++i) {
@@ -156,6 +167,22 @@ void add_paper_scores(const Contingency& table, SegmentationScores& scores) {
   // N_all = sum_i |G_i|. So F_os = 1 - N_true/N_all, F_us = N_false/N_all.
   scores.over_segmentation = 1.0 - double(n_true) / double(n_all);
   scores.under_segmentation = double(n_false) / double(n_all);
+}
+
+// A region is lost into the support when its best segment S_i (largest
+// intersection, as in eq. 7) holds more support points than points of G_i: the
+// object was merged into the table, what the paper's robot application removes
+// the ground plane first against (Sec. III.C: object-to-table and handle-to-body
+// transitions look alike). Support regions themselves are never lost.
+void add_lost_regions(const Contingency& table, const std::vector<RegionMatch>& matches, LabelRange support,
+                      SegmentationScores& scores) {
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    const std::uint32_t label = table.regions.labels[i];
+    if (support.contains(label)) continue;
+    if (table.support_points[matches[i].segment] > matches[i].largest) scores.lost_labels.push_back(label);
+  }
+  std::sort(scores.lost_labels.begin(), scores.lost_labels.end());
+  scores.objects_lost = static_cast<std::uint32_t>(scores.lost_labels.size());
 }
 
 std::uint64_t pairs(std::uint64_t n) { return n * (n - 1) / 2; }  // n choose 2, 0 for n = 0
@@ -186,18 +213,43 @@ double adjusted_rand_index(const Contingency& table) {
 
 SegmentationScores score_segmentation(const Labels& predicted, const Labels& ground_truth,
                                       const std::vector<Eigen::Vector3f>& points,
-                                      std::optional<LabelRange> ignored) {
+                                      std::optional<LabelRange> ignored, LabelRange support) {
   check_sizes(predicted, ground_truth, points);
-  const Contingency table = tabulate(predicted, ground_truth, points, ignored);
+  check_support(support);
+  const Contingency table = tabulate(predicted, ground_truth, points, ignored, support);
   if (table.regions.labels.empty()) {
     throw Error("no ground-truth region to score (all points ignored or non-finite)");
   }
   SegmentationScores scores;
-  add_paper_scores(table, scores);
+  const std::vector<RegionMatch> matches = match_regions(table);
+  add_paper_scores(table, matches, scores);
+  add_lost_regions(table, matches, support, scores);
   scores.adjusted_rand_index = adjusted_rand_index(table);
   scores.ground_truth_regions = static_cast<std::uint32_t>(table.regions.labels.size());
   scores.scored_points = table.finite_points;
   return scores;
+}
+
+// OSD / mOSD label an object's parts n * 10 + k (README.md, Data: 20-29
+// object 1, 30-39 object 2); label / 10 is the object.
+Labels merge_object_parts(const Labels& ground_truth, LabelRange support) {
+  check_support(support);
+  Labels merged(ground_truth);
+  for (std::uint32_t& label : merged) {
+    if (support.contains(label)) {
+      label = support.first;
+    } else if (label >= kLabelsPerObject) {
+      label = label / kLabelsPerObject * kLabelsPerObject;
+    }
+  }
+  return merged;
+}
+
+SegmentationScores score_objects(const Labels& predicted, const Labels& ground_truth,
+                                 const std::vector<Eigen::Vector3f>& points, std::optional<LabelRange> ignored,
+                                 LabelRange support) {
+  check_sizes(predicted, ground_truth, points);
+  return score_segmentation(predicted, merge_object_parts(ground_truth, support), points, ignored, support);
 }
 
 }  // namespace lccp

@@ -109,23 +109,26 @@ std::array<Part, kPartCount> object_parts_at(double t_s) {
   const Eigen::Vector3d bottle_position(kBottleSwingM * c, kBottleY, 0);
 
   std::array<Part, kPartCount> parts;
-  parts[0] = box(kFirstObjectLabel + 0, box_a_position, box_a_yaw, kBoxAHalfX, kBoxAHalfY, kBoxAHeight);
+  parts[0] = box(object_label(1), box_a_position, box_a_yaw, kBoxAHalfX, kBoxAHalfY, kBoxAHeight);
   // Box B turns once per period.
-  parts[1] = box(kFirstObjectLabel + 1, Eigen::Vector3d(kBoxBX, kBoxBY, 0), 0.3 + phase, kBoxBHalfX, kBoxBHalfY,
+  parts[1] = box(object_label(2), Eigen::Vector3d(kBoxBX, kBoxBY, 0), 0.3 + phase, kBoxBHalfX, kBoxBHalfY,
                  kBoxBHeight);
-  parts[2] = cylinder(kFirstObjectLabel + 2, can_position, kCanRadius, kCanHeight);
-  parts[3] = cylinder(kFirstObjectLabel + 3, bottle_position, kBottleRadius, kBottleHeight);
+  parts[2] = cylinder(object_label(3), can_position, kCanRadius, kCanHeight);
+  parts[3] = cylinder(object_label(4), bottle_position, kBottleRadius, kBottleHeight);
 
   // The mug turns once per period, its handle sweeping round.
   Part cup;
   cup.shape = Shape::cup;
-  cup.label = kFirstObjectLabel + 4;
+  cup.label = object_label(kMugObject, kBodyPart);
   cup.position = Eigen::Vector3d(kMugX, kMugY, 0);
   cup.yaw_rad = -0.5 + phase;
   cup.local_min = Eigen::Vector3d(-kMugOuterRadiusM, -kMugOuterRadiusM, 0);
   cup.local_max = Eigen::Vector3d(kMugOuterRadiusM, kMugOuterRadiusM, kMugHeightM);
+  // The handle is a part of its own (OSD/mOSD label the parts of an object
+  // n * 10 + k), so that scoring can tell whether it was split off the body.
   Part handle = cup;
   handle.shape = Shape::handle;
+  handle.label = object_label(kMugObject, kHandlePart);
   const double reach = kHandleArcRadiusM + kHandleTubeRadiusM;
   handle.local_min = Eigen::Vector3d(kMugOuterRadiusM - 0.01, -kHandleTubeRadiusM, kMugHeightM / 2 - reach);
   handle.local_max = Eigen::Vector3d(kHandleCentreX + reach, kHandleTubeRadiusM, kMugHeightM / 2 + reach);

@@ -8,15 +8,16 @@
 
 #include <Eigen/Core>
 
+#include "lccp/synthetic/tabletop_scene.hpp"
+
 namespace lccp::synthetic::detail {
 
 // Every motion repeats after kPeriodFrames frames (10 s at 30 Hz).
 inline constexpr std::uint64_t kPeriodFrames = 300;
 
-inline constexpr std::uint32_t kObjectCount = 5;  // labels kFirstObjectLabel + 0..4
-
 // The mug: a cup (outer wall, open top, inner wall and bottom) and a handle,
-// a tube bent in a half circle in the cup's local x-z plane, one object label.
+// a tube bent in a half circle in the cup's local x-z plane: one object, two
+// parts (labels object_label(kMugObject, kBodyPart) and (kMugObject, kHandlePart)).
 inline constexpr double kMugOuterRadiusM = 0.045;
 inline constexpr double kMugInnerRadiusM = 0.039;
 inline constexpr double kMugHeightM = 0.10;
@@ -67,8 +68,10 @@ struct Part {
 // The table: a slab whose top is the plane z = 0.
 Part table();
 
-// The objects' parts at time t_s (seconds; periodic), the mug as two parts
-// with the same label.
+// The objects' parts at time t_s (seconds; periodic): objects 1..kObjectCount
+// in order, each one part labelled object_label(n), the mug as two parts
+// labelled object_label(kMugObject, kBodyPart) and object_label(kMugObject,
+// kHandlePart), its handle last.
 inline constexpr std::size_t kPartCount = kObjectCount + 1;
 std::array<Part, kPartCount> object_parts_at(double t_s);
 

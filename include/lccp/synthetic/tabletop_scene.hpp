@@ -17,11 +17,37 @@ namespace detail {
 class NormalDeviates;
 }  // namespace detail
 
-// Ground-truth labels per pixel. Scored as objects with --ignore 0-9.
+// Ground-truth labels per pixel, in the convention of the Object Segmentation
+// Database (OSD, Richtsfeld et al. 2012) and mOSD: 0 no data, 1-9 the support
+// (table, floor, wall), and object n's parts n * 10 + k. Here object n (1-5)
+// has its body k = 0, and the mug's handle its own part k = 1. label / 10 is
+// a persistent object id: an object keeps its n in every frame, at every
+// camera and seed. Scored as objects with --ignore 0-9 (and eval's
+// --object-level, which merges the parts n * 10 + k into one region).
 inline constexpr std::uint32_t kNoReturnLabel = 0;    // no depth measured
 inline constexpr std::uint32_t kTableLabel = 1;
 inline constexpr std::uint32_t kBackgroundLabel = 2;  // floor and wall
-inline constexpr std::uint32_t kFirstObjectLabel = 10;
+inline constexpr std::uint32_t kLastSupportLabel = 9;  // labels 1-9: table and background
+
+// The objects n = 1..kObjectCount: 1 box A (the larger box), 2 box B, 3 the
+// can, 4 the bottle, 5 the mug.
+inline constexpr std::uint32_t kObjectCount = 5;
+inline constexpr std::uint32_t kMugObject = 5;
+// Parts k of an object.
+inline constexpr std::uint32_t kBodyPart = 0;
+inline constexpr std::uint32_t kHandlePart = 1;  // the mug's handle
+
+// The label of part `part` of object `object` (1..kObjectCount): object * 10 + part.
+constexpr std::uint32_t object_label(std::uint32_t object, std::uint32_t part = kBodyPart) {
+  return object * 10 + part;
+}
+inline constexpr std::uint32_t kFirstObjectLabel = object_label(1);  // 10: labels below are no object
+
+// The persistent object id of a label (n for n * 10 + k), 0 for the
+// no-return and support labels 0-9.
+constexpr std::uint32_t object_of_label(std::uint32_t label) { return label / 10; }
+// The part k of an object's label n * 10 + k.
+constexpr std::uint32_t part_of_label(std::uint32_t label) { return label % 10; }
 
 inline constexpr double kFrameRateHz = 30.0;
 
@@ -42,7 +68,7 @@ struct Camera {
 
 struct SyntheticFrame {
   DepthImage depth;  // millimetres, 0 = no return
-  Labels labels;     // per pixel, row-major, kNoReturnLabel where depth is 0
+  Labels labels;     // per pixel, row-major, kNoReturnLabel where depth is 0 (the ground truth)
 };
 
 class TabletopScene {
@@ -53,7 +79,9 @@ class TabletopScene {
 
   // The scene at time frame_index / kFrameRateHz seconds (the motion repeats
   // every 10 s; the noise does not). Single-threaded, about 5 ms at 640x480;
-  // safe to call from several threads at once.
+  // safe to call from several threads at once. Its labels are the frame's
+  // ground truth: all an evaluation needs of a frame index (per-object
+  // centroids and the like follow from the labelled points).
   SyntheticFrame render(std::uint64_t frame_index) const;
 
   const Camera& camera() const { return camera_; }
