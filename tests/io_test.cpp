@@ -1047,8 +1047,8 @@ TEST(IoConfig, NonScalarKeysAndValuesAreOneLineErrors) {
   expect_lccp_error([] { parse_config(std::string(100000, '['), "c.yaml"); }, {"c.yaml: not valid YAML"});
   expect_lccp_error([] { parse_config("\"bad\\nkey\": 1\n", "c.yaml"); }, {"unknown config key 'bad?key'"});
   expect_lccp_error([] { parse_config("voxel_size_m: \"1\\n2\"\n", "c.yaml"); }, {"'1?2' is not a number"});
-  EXPECT_EQ(parse_config("", "c.yaml").voxels.voxel_size_m, LccpConfig{}.voxels.voxel_size_m);
-  EXPECT_EQ(parse_config("voxel_size_m: 0.0075\nsanity_criterion: off\n", "c.yaml").voxels.voxel_size_m, 0.0075f);
+  EXPECT_EQ(parse_config("", "c.yaml").objects.voxels.voxel_size_m, LccpConfig{}.voxels.voxel_size_m);
+  EXPECT_EQ(parse_config("voxel_size_m: 0.0075\nsanity_criterion: off\n", "c.yaml").objects.voxels.voxel_size_m, 0.0075f);
 }
 
 TEST(IoConfig, FileErrorsNameTheFile) {
@@ -1059,7 +1059,7 @@ TEST(IoConfig, FileErrorsNameTheFile) {
   expect_lccp_error([&] { load_config(dir); }, {"cannot open config file"});
   write_bytes(dir / "big.yaml", "# " + std::string(2 << 20, 'x') + "\n");
   expect_lccp_error([&] { load_config(dir / "big.yaml"); }, {"big.yaml: config file larger than"});
-  EXPECT_EQ(load_config(fs::path(LCCP_CONFIG_DIR) / "p2.yaml").supervoxels.seed_size_m, 0.06f);
+  EXPECT_EQ(load_config(fs::path(LCCP_CONFIG_DIR) / "p2.yaml").objects.supervoxels.seed_size_m, 0.06f);
 }
 
 }  // namespace

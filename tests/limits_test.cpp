@@ -101,15 +101,15 @@ TEST(Limits, PointAndVoxelCountsAreBounded) {
 }
 
 TEST(Limits, LimitsAreConfigKeys) {
-  LccpConfig config;
+  SceneConfig config;
   apply_setting(config, "max_points=100");
   apply_setting(config, "max_voxels=50");
   apply_setting(config, "max_growth_passes=7");
   apply_setting(config, "max_coordinate_m=20");
-  EXPECT_EQ(config.limits.max_points, 100u);
-  EXPECT_EQ(config.limits.max_voxels, 50u);
-  EXPECT_EQ(config.limits.max_growth_passes, 7u);
-  EXPECT_EQ(config.limits.max_coordinate_m, 20.0f);
+  EXPECT_EQ(config.objects.limits.max_points, 100u);
+  EXPECT_EQ(config.objects.limits.max_voxels, 50u);
+  EXPECT_EQ(config.objects.limits.max_growth_passes, 7u);
+  EXPECT_EQ(config.objects.limits.max_coordinate_m, 20.0f);
   EXPECT_THROW(apply_setting(config, "max_points=-1"), Error);
 }
 

@@ -2,6 +2,7 @@
 // Parameters of the LCCP method. Defaults are the paper's parameter set P1
 // (Table II, beta_thresh 10 deg); every field carries its unit in its name.
 #include <cstdint>
+#include <optional>
 
 namespace lccp {
 
@@ -70,11 +71,21 @@ struct LccpConfig {
   LimitsConfig limits;
 };
 
+// A run's configuration: one level of LCCP, or two, as in the paper's robot
+// application (Sec. III.C, Fig. 5 B and C): objects first (after the support
+// plane is removed), then each object partitioned into parts.
+struct SceneConfig {
+  LccpConfig objects;               // the first level: each of its segments is an object
+  std::optional<LccpConfig> parts;  // the second level, within each object; empty: one level
+};
+
 // VCCS's number of growth passes for seed size s and voxel size v: int(1.8 s / v) - 1,
 // at least 1 (PCL's SupervoxelClustering::expandSupervoxels).
 int growth_passes(float seed_size_m, float voxel_size_m);
 
 // Throws lccp::Error naming the first out-of-range field.
 void validate(const LccpConfig& config);
+// Both levels; the part level works within objects, so it removes no support plane.
+void validate(const SceneConfig& config);
 
 }  // namespace lccp

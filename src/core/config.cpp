@@ -34,9 +34,32 @@ void validate_limits(const LccpConfig& c) {
               ") growth passes, int(1.8 s / v) - 1", passes);
 }
 
+void validate_support(const SupportPlaneConfig& s) {
+  require(in_range(s.distance_m, 1e-6f, 10.0f), "support_distance_m", "in (0, 10]", s.distance_m);
+  require(in_range(s.up_x, -1e6f, 1e6f) && in_range(s.up_y, -1e6f, 1e6f) && in_range(s.up_z, -1e6f, 1e6f),
+          "support_up_x", "finite (so must support_up_y and support_up_z be)", s.up_x);
+  require(in_range(s.max_tilt_deg, 0.0f, 90.0f), "support_max_tilt_deg", "in [0, 90]", s.max_tilt_deg);
+  require(in_range(s.min_inlier_share, 0.0f, 1.0f), "support_min_share", "in [0, 1]", s.min_inlier_share);
+  require(s.iterations > 0 && s.iterations <= 100000u, "support_iterations", "in [1, 100000]", s.iterations);
+}
+
 }  // namespace
 
+void validate(const SceneConfig& c) {
+  validate(c.objects);
+  if (!c.parts) return;
+  try {
+    validate(*c.parts);
+  } catch (const Error& e) {
+    throw Error(std::string("parts: ") + e.what());
+  }
+  if (c.parts->support.enabled) {
+    throw Error("config key 'parts.support_plane' must be false: the support plane is removed once, before the objects");
+  }
+}
+
 void validate(const LccpConfig& c) {
+  validate_support(c.support);
   require(std::isfinite(c.voxels.voxel_size_m) && c.voxels.voxel_size_m > 0.0f, "voxel_size_m", "> 0",
           c.voxels.voxel_size_m);
   require(std::isfinite(c.supervoxels.seed_size_m) && c.supervoxels.seed_size_m >= c.voxels.voxel_size_m,

@@ -23,6 +23,15 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
   return labels;
 }
 
+// Stage 0 (Sec. III.C): the support plane's points are left out of the segmentation.
+void remove_support(SegmentationWork& w, const SupportPlaneConfig& config) {
+  if (!config.enabled) return;
+  w.support = find_support_plane(*w.cloud, config);
+  if (!w.support) return;
+  if (w.skip.empty()) w.skip.assign(w.cloud->size(), 0);
+  detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) { w.skip[i] |= w.support->on_plane[i]; });
+}
+
 // Stage 8 (A.4): small segments merged, segments numbered 1..K by size, and
 // every point labelled through its voxel's supervoxel.
 void filter_and_label(SegmentationWork& w, std::uint32_t n_filter) {
@@ -41,7 +50,7 @@ SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const { retur
 
 SegmentationWork LccpSegmenter::run(const PointCloud& cloud) const {
   SegmentationWork work(cloud);
-  for (const StageInfo& stage : kStages) run_stage(stage.stage, work);
+  for (std::size_t s = 0; s < kLccpStageCount; ++s) run_stage(kStages[s].stage, work);
   return work;
 }
 
@@ -50,7 +59,8 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
   const float v = config_.voxels.voxel_size_m;
   const SupervoxelConfig& sv = config_.supervoxels;
   switch (stage) {
-    case Stage::voxelize: w.grid = voxelize(*w.cloud, config_.voxels, config_.limits); break;
+    case Stage::support: remove_support(w, config_.support); break;
+    case Stage::voxelize: w.grid = voxelize(*w.cloud, config_.voxels, config_.limits, w.skip); break;
     case Stage::normals: w.normals = estimate_voxel_normals(w.grid); break;
     case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;
     case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, sv, v); break;
@@ -60,6 +70,9 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
       break;
     case Stage::components: w.segment_of_supervoxel = convex_components(w.supervoxels.size(), w.edges, w.convex); break;
     case Stage::filter: filter_and_label(w, config_.filter.n_filter_supervoxels); break;
+    case Stage::parts:
+    case Stage::geometry:
+    case Stage::ids: return;  // the scene's (src/objects/scene.cpp)
   }
   w.result.times[stage] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -71,10 +71,10 @@ Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning) {
               floor_to_int(p.z() * inverse_size));
 }
 
-// Cells of every point (kInvalidCell where non-finite) and their bounds, in one
-// pass. Points beyond max_coordinate get no cell; bounds.farthest tells.
-CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binning, float max_coordinate,
-                         std::vector<Cell>& cells) {
+// Cells of every point (kInvalidCell where non-finite or skipped) and their
+// bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest tells.
+CellBounds compute_cells(const PointCloud& cloud, const std::vector<std::uint8_t>& skip, float voxel_size,
+                         Binning binning, float max_coordinate, std::vector<Cell>& cells) {
   cells.resize(cloud.size());
   const float inverse_size = 1.0f / voxel_size;
   return tbb::parallel_reduce(
@@ -83,7 +83,7 @@ CellBounds compute_cells(const PointCloud& cloud, float voxel_size, Binning binn
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
           const Eigen::Vector3f& p = cloud.points[i];
           cells[i] = kInvalidCell;
-          if (!is_finite(p)) continue;
+          if (!is_finite(p) || (!skip.empty() && skip[i])) continue;
           bounds.farthest = std::max(bounds.farthest, p.cwiseAbs().maxCoeff());
           if (bounds.farthest > max_coordinate) continue;
           if (binning == Binning::camera && !(p.z() > 0.0f)) {
@@ -268,7 +268,8 @@ void check_limit(bool ok, const std::string& what, const char* key, double limit
 
 }  // namespace
 
-VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits) {
+VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits,
+                   const std::vector<std::uint8_t>& skip) {
   check_limit(cloud.size() <= limits.max_points, "the cloud has " + std::to_string(cloud.size()) + " points",
               "max_points", limits.max_points);
   // Automatic binning tries the camera transform on organized clouds and falls
@@ -276,7 +277,7 @@ VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const Lim
   Binning binning = config.binning == Binning::automatic && cloud.organized() ? Binning::camera : config.binning;
   if (binning == Binning::automatic) binning = Binning::euclidean;
   std::vector<Cell> cells;
-  CellBounds bounds = compute_cells(cloud, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
+  CellBounds bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
   check_limit(bounds.farthest <= limits.max_coordinate_m,
               "a point lies " + format_number(bounds.farthest) + " m from the origin along an axis",
               "max_coordinate_m", limits.max_coordinate_m);
@@ -285,9 +286,9 @@ VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const Lim
   }
   if (bounds.behind_sensor) {
     binning = Binning::euclidean;
-    bounds = compute_cells(cloud, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
+    bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
   }
-  if (bounds.count == 0) throw Error("the cloud has no finite points");
+  if (bounds.count == 0) throw Error(skip.empty() ? "the cloud has no finite points" : "no points left to segment");
   const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
   const PackedKeys packing = detail::packed_keys(keys, cloud.size());
   if (!keys.fits() || !packing.fits()) throw Error("the cloud spans too many voxels for its voxel size");

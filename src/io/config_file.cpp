@@ -88,6 +88,13 @@ Key float_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return show(field(c)); }};
 }
 
+// A true/false parameter, like float_key.
+template <typename Field>
+Key bool_key(std::string_view name, Field field, std::string_view meaning) {
+  return {name, meaning, [=](LccpConfig& c, const std::string& t) { field(c) = parse_bool(name, t); },
+          [=](const LccpConfig& c) { return std::string(field(c) ? "true" : "false"); }};
+}
+
 // A whole-number parameter, like float_key.
 template <typename Field>
 Key count_key(std::string_view name, Field field, std::string_view meaning) {
@@ -95,8 +102,20 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 16>& keys() {
-  static const std::array<Key, 16> table{
+const std::array<Key, 24>& keys() {
+  static const std::array<Key, 24> table{
+      bool_key("support_plane", [](auto& c) -> auto& { return c.support.enabled; },
+               "remove the support plane first, Sec. III.C (true/false)"),
+      float_key("support_distance_m", [](auto& c) -> auto& { return c.support.distance_m; },
+                "points this close to the plane are on it (metres)"),
+      float_key("support_up_x", [](auto& c) -> auto& { return c.support.up_x; }, "expected up direction, x (0 0 0: any)"),
+      float_key("support_up_y", [](auto& c) -> auto& { return c.support.up_y; }, "expected up direction, y"),
+      float_key("support_up_z", [](auto& c) -> auto& { return c.support.up_z; }, "expected up direction, z"),
+      float_key("support_max_tilt_deg", [](auto& c) -> auto& { return c.support.max_tilt_deg; },
+                "largest angle between plane normal and up (degrees)"),
+      float_key("support_min_share", [](auto& c) -> auto& { return c.support.min_inlier_share; },
+                "fewer inliers (share of finite points): no plane"),
+      count_key("support_iterations", [](auto& c) -> auto& { return c.support.iterations; }, "RANSAC hypotheses"),
       float_key("voxel_size_m", [](auto& c) -> auto& { return c.voxels.voxel_size_m; }, "voxel size v (metres)"),
       Key{"binning", "voxel cells: auto (camera if organized), euclidean or camera",
           [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
@@ -106,17 +125,12 @@ const std::array<Key, 16>& keys() {
       float_key("normal_weight", [](auto& c) -> auto& { return c.supervoxels.normal_weight; }, "w_n, on 1 - |n1.n2|"),
       float_key("color_weight", [](auto& c) -> auto& { return c.supervoxels.color_weight; }, "w_c, on |rgb1 - rgb2| / 255"),
       float_key("beta_thresh_deg", [](auto& c) -> auto& { return c.convexity.beta_thresh_deg; }, "CC bias beta_thresh (degrees), eq. 1"),
-      Key{"sanity_criterion", "apply SC, eq. 4 (true/false)",
-          [](LccpConfig& c, const std::string& t) { c.convexity.sanity_criterion = parse_bool("sanity_criterion", t); },
-          [](const LccpConfig& c) { return std::string(c.convexity.sanity_criterion ? "true" : "false"); }},
+      bool_key("sanity_criterion", [](auto& c) -> auto& { return c.convexity.sanity_criterion; }, "apply SC, eq. 4 (true/false)"),
       float_key("theta_max_deg", [](auto& c) -> auto& { return c.convexity.theta_max_deg; }, "SC sigmoid maximum (degrees), eq. 3"),
       float_key("beta_off_deg", [](auto& c) -> auto& { return c.convexity.beta_off_deg; }, "SC sigmoid offset (degrees), eq. 3"),
       float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
-      Key{"n_filter_supervoxels", "segments of <= this many supervoxels merge into a neighbour (A.4)",
-          [](LccpConfig& c, const std::string& t) {
-            c.filter.n_filter_supervoxels = parse_count("n_filter_supervoxels", t);
-          },
-          [](const LccpConfig& c) { return std::to_string(c.filter.n_filter_supervoxels); }},
+      count_key("n_filter_supervoxels", [](auto& c) -> auto& { return c.filter.n_filter_supervoxels; },
+                "segments of <= this many supervoxels merge into a neighbour (A.4)"),
       count_key("max_points", [](auto& c) -> auto& { return c.limits.max_points; }, "refuse clouds with more points"),
       count_key("max_voxels", [](auto& c) -> auto& { return c.limits.max_voxels; }, "refuse clouds filling more voxels"),
       count_key("max_growth_passes", [](auto& c) -> auto& { return c.limits.max_growth_passes; },
@@ -146,24 +160,41 @@ std::string at_line(const YAML::Mark& mark) {
   return mark.line >= 0 ? " (line " + std::to_string(mark.line + 1) + ")" : "";
 }
 
+constexpr std::string_view kPartsKey = "parts";  // the second level's map (SceneConfig::parts)
+
 // One `key: value` entry: both must be plain scalars.
-void apply_entry(LccpConfig& config, const YAML::Node& key, const YAML::Node& value, const std::string& file) {
+void apply_entry(LccpConfig& config, const YAML::Node& key, const YAML::Node& value, const std::string& file,
+                 const std::string& prefix) {
   if (!key.IsScalar())
     throw Error(file + ": a config key must be a plain name, not a list or map" + at_line(key.Mark()));
   const std::string name = key.Scalar();
-  if (!value.IsScalar()) throw Error(file + ": config key '" + printable(name) + "' needs a single value");
+  if (!value.IsScalar()) throw Error(file + ": config key '" + prefix + printable(name) + "' needs a single value");
   try {
     set_key(config, name, value.Scalar());
   } catch (const Error& e) {
-    throw Error(file + ": " + e.what());
+    throw Error(file + ": " + prefix + e.what());
   }
 }
 
-LccpConfig config_from_yaml(const YAML::Node& root, const std::string& file) {
-  LccpConfig config;
+// The part level: a map of the same keys, starting from the defaults (P1).
+LccpConfig parts_from_yaml(const YAML::Node& map, const std::string& file) {
+  if (!map.IsMap()) throw Error(file + ": '" + std::string(kPartsKey) + "' needs a map of key: value" + at_line(map.Mark()));
+  LccpConfig parts;
+  for (const auto& entry : map) apply_entry(parts, entry.first, entry.second, file, "parts.");
+  return parts;
+}
+
+SceneConfig config_from_yaml(const YAML::Node& root, const std::string& file) {
+  SceneConfig config;
   if (root.IsNull()) return config;
   if (!root.IsMap()) throw Error(file + ": expected a map of key: value");
-  for (const auto& entry : root) apply_entry(config, entry.first, entry.second, file);
+  for (const auto& entry : root) {
+    if (entry.first.IsScalar() && entry.first.Scalar() == kPartsKey) {
+      config.parts = parts_from_yaml(entry.second, file);
+    } else {
+      apply_entry(config.objects, entry.first, entry.second, file, "");
+    }
+  }
   try {
     validate(config);
   } catch (const Error& e) {
@@ -174,7 +205,7 @@ LccpConfig config_from_yaml(const YAML::Node& root, const std::string& file) {
 
 }  // namespace
 
-LccpConfig parse_config(std::string_view yaml_text, std::string_view name) {
+SceneConfig parse_config(std::string_view yaml_text, std::string_view name) {
   const std::string file(name);
   try {
     return config_from_yaml(YAML::Load(std::string(yaml_text)), file);
@@ -185,7 +216,7 @@ LccpConfig parse_config(std::string_view yaml_text, std::string_view name) {
   }
 }
 
-LccpConfig load_config(const std::filesystem::path& path) {
+SceneConfig load_config(const std::filesystem::path& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw Error(path.string() + ": cannot open config file (a directory)");
   std::ifstream in(path, std::ios::binary);
@@ -199,18 +230,30 @@ LccpConfig load_config(const std::filesystem::path& path) {
   return parse_config(text, path.string());
 }
 
-void apply_setting(LccpConfig& config, const std::string& key_equals_value) {
+void apply_setting(SceneConfig& config, const std::string& key_equals_value) {
   const auto equals = key_equals_value.find('=');
   if (equals == std::string::npos || equals == 0) {
     throw Error("--set expects key=value, got '" + printable(key_equals_value) + "'");
   }
-  set_key(config, key_equals_value.substr(0, equals), key_equals_value.substr(equals + 1));
+  const std::string key = key_equals_value.substr(0, equals), value = key_equals_value.substr(equals + 1);
+  const std::string parts_prefix = std::string(kPartsKey) + ".";
+  if (!key.starts_with(parts_prefix)) return set_key(config.objects, key, value);
+  if (!config.parts) throw Error("config key '" + printable(key) + "': this config has one level (no parts:)");
+  try {
+    set_key(*config.parts, key.substr(parts_prefix.size()), value);
+  } catch (const Error& e) {
+    throw Error(parts_prefix + e.what());
+  }
 }
 
-std::string describe_config(const LccpConfig& config) {
+std::string describe_config(const SceneConfig& config) {
   std::string text;
   for (const Key& key : keys()) {
-    text += std::string(key.name) + ": " + key.get(config) + "    # " + std::string(key.meaning) + "\n";
+    text += std::string(key.name) + ": " + key.get(config.objects) + "    # " + std::string(key.meaning) + "\n";
+  }
+  if (!config.parts) return text;
+  for (const Key& key : keys()) {
+    text += "parts." + std::string(key.name) + ": " + key.get(*config.parts) + "    # " + std::string(key.meaning) + "\n";
   }
   return text;
 }

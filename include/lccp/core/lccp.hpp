@@ -7,12 +7,13 @@
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/stages.hpp"
 #include "lccp/core/supervoxels.hpp"
+#include "lccp/core/support_plane.hpp"
 #include "lccp/core/voxel_grid.hpp"
 
 namespace lccp {
 
 struct SegmentationResult {
-  Labels labels;  // per point: 1..segment_count, 0 for non-finite points
+  Labels labels;  // per point: 1..segment_count, 0 for non-finite and skipped points
   std::uint32_t voxel_count = 0;
   std::uint32_t supervoxel_count = 0;
   std::uint32_t segment_count = 0;
@@ -26,6 +27,8 @@ struct SegmentationWork {
   explicit SegmentationWork(const PointCloud& points) : cloud(&points) {}
 
   const PointCloud* cloud;
+  std::vector<std::uint8_t> skip;                      // per point, 1: left out (empty: none); set by the caller
+  std::optional<SupportPlane> support;                 // support (its points join `skip`)
   VoxelGrid grid;                                      // voxelize
   std::vector<Eigen::Vector3f> normals;                // normals, per voxel
   std::vector<std::uint32_t> seeds;                    // seeds, voxel indices
@@ -41,7 +44,8 @@ class LccpSegmenter {
   // Throws lccp::Error if the config is out of range.
   explicit LccpSegmenter(const LccpConfig& config);
 
-  // Labels every finite point; deterministic for a given cloud and config,
+  // Labels every finite point (but those on the support plane, if the config
+  // removes it: see SegmentationWork::support); deterministic for a given cloud and config,
   // whatever the thread count. Throws lccp::Error for a cloud without finite points.
   SegmentationResult segment(const PointCloud& cloud) const;
 
@@ -49,8 +53,9 @@ class LccpSegmenter {
   // for what is computed from it (per-segment geometry).
   SegmentationWork run(const PointCloud& cloud) const;
 
-  // Runs one stage on `work` and adds its time to work.result.times. Stages
-  // run in kStages order; segment() is every stage in turn.
+  // Runs one of stages 0-8 on `work` and adds its time to work.result.times
+  // (the later stages are the scene's: lccp/objects/scene.hpp). Stages run in
+  // kStages order; segment() is stages 0-8 in turn.
   void run_stage(Stage stage, SegmentationWork& work) const;
 
   const LccpConfig& config() const { return config_; }

@@ -42,7 +42,9 @@ struct VoxelGrid {
 // the cloud has no finite point, when camera binning is asked for a point at
 // z <= 0, when the cloud spans more cells than the integer keys can hold, or
 // when it exceeds a limit (more points or voxels than allowed, a finite point
-// beyond max_coordinate_m).
-VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits = {});
+// beyond max_coordinate_m). Points i with skip[i] != 0 are left out (no voxel),
+// as if they were not finite; an empty `skip` leaves none out.
+VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits = {},
+                   const std::vector<std::uint8_t>& skip = {});
 
 }  // namespace lccp

@@ -1,5 +1,5 @@
 #pragma once
-// LccpConfig from YAML presets (config/*.yaml) and key=value overrides.
+// SceneConfig from YAML presets (config/*.yaml) and key=value overrides.
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -8,20 +8,24 @@
 
 namespace lccp {
 
-// Reads a flat YAML map of the keys listed by describe_config(). Unknown keys and
-// out-of-range values throw lccp::Error naming the key; so does anything that
-// is not such a map (invalid YAML, a list or map as a key or value), with one
-// line "PATH: problem". Files over 1 MiB are refused.
-LccpConfig load_config(const std::filesystem::path& path);
+// Reads a YAML map of the keys listed by describe_config() for the first level
+// and, for two levels, a map `parts:` of the same keys for the second (starting
+// from the defaults, P1). Unknown keys and out-of-range values throw
+// lccp::Error naming the key; so does anything that is not such a map (invalid
+// YAML, a list or map as a value), with one line "PATH: problem". Files over
+// 1 MiB are refused.
+SceneConfig load_config(const std::filesystem::path& path);
 
 // The same on YAML text in memory (for fuzzing and tests); `name` stands for
 // the file in error messages.
-LccpConfig parse_config(std::string_view yaml_text, std::string_view name);
+SceneConfig parse_config(std::string_view yaml_text, std::string_view name);
 
-// Applies one `key=value` override, e.g. "beta_thresh_deg=20".
-void apply_setting(LccpConfig& config, const std::string& key_equals_value);
+// Applies one `key=value` override, e.g. "beta_thresh_deg=20", or
+// "parts.beta_thresh_deg=20" for the second level (which must exist).
+void apply_setting(SceneConfig& config, const std::string& key_equals_value);
 
-// One line per key: name, unit and current value (for --help and docs).
-std::string describe_config(const LccpConfig& config);
+// One line per key: name, unit and current value (for --help and docs); the
+// second level's keys prefixed "parts.".
+std::string describe_config(const SceneConfig& config);
 
 }  // namespace lccp
