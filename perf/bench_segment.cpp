@@ -195,7 +195,7 @@ std::vector<Frame> load_frames(const fs::path& dir, const Options& options) {
 
 NamedConfig named_config(const std::string& name, float voxel_m, float seed_m, std::uint32_t n_filter) {
   const fs::path file = fs::path(LCCP_CONFIG_DIR) / (std::string(name == "P1" ? "p1" : "p2") + ".yaml");
-  if (fs::exists(file)) return {name, file.string(), lccp::load_config(file)};
+  if (fs::exists(file)) return {name, file.string(), lccp::load_config(file).objects};
   std::fprintf(stderr, "bench_segment: %s not found, using the paper's Table II values for %s\n",
                file.c_str(), name.c_str());
   lccp::LccpConfig config;  // defaults: weights 1/4/0, beta_thresh 10 deg, SC on

@@ -138,9 +138,10 @@ std::string now_string() {
 struct StageMedians {
   // "waiting": end-to-end minus back-projection minus segment, i.e. time spent waiting
   // for a slot (paced: in the admission gate) or between stages.
-  static constexpr std::size_t kCount = 11;
-  static constexpr const char* kNames[kCount] = {"back_projection", "voxelize", "normals", "seeds",   "growth",
-                                                 "adjacency",       "classify", "components", "filter", "segment",
+  static constexpr std::size_t kCount = 15;
+  static constexpr const char* kNames[kCount] = {"back_projection", "support",    "voxelize", "normals", "seeds",
+                                                 "growth",          "adjacency",  "classify", "components",
+                                                 "filter",          "parts",      "geometry", "ids",     "segment",
                                                  "waiting"};
   double ms[kCount] = {};
 };
@@ -168,7 +169,7 @@ struct RunResult {
   StageMedians stages;
 };
 
-RunResult run_pipeline(const lccp::LccpSegmenter& segmenter, const std::vector<lccp::DepthImage>& images,
+RunResult run_pipeline(const lccp::SceneSegmenter& segmenter, const std::vector<lccp::DepthImage>& images,
                        Mode mode, unsigned threads, unsigned inflight, std::uint64_t frames, double fps) {
   lccp::PipelineConfig config;
   config.frames_in_flight = inflight;
@@ -492,7 +493,7 @@ int main(int argc, char** argv) {
     std::vector<lccp::DepthImage> images;
     {
       const std::unique_ptr<lccp::FrameSource> recording = lccp::open_recording(options.recording);
-      while (std::optional<lccp::Frame> frame = recording->next()) {
+      while (std::optional<lccp::Frame> frame = recording->next(std::stop_token{})) {
         if (!frame->depth) throw lccp::Error(options.recording + ": frame " + std::to_string(frame->index) + " has no depth");
         images.push_back(std::move(*frame->depth));
       }
@@ -503,6 +504,7 @@ int main(int argc, char** argv) {
 
     const lccp::LccpConfig config;  // defaults = P1
     const lccp::LccpSegmenter segmenter(config);
+    const lccp::SceneSegmenter stream_segmenter(lccp::SceneConfig{config, std::nullopt});
 
     // References on the clouds the pipeline's first stage makes.
     Reference ours, pcl;
@@ -528,9 +530,9 @@ int main(int argc, char** argv) {
       for (unsigned k : options.inflight) {
         const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
         if (options.warmup > 0)
-          (void)run_pipeline(segmenter, images, Mode::throughput, t, k, options.warmup, options.fps);
+          (void)run_pipeline(stream_segmenter, images, Mode::throughput, t, k, options.warmup, options.fps);
         for (Mode mode : {Mode::throughput, Mode::paced}) {
-          runs.push_back(run_pipeline(segmenter, images, mode, t, k, frames, options.fps));
+          runs.push_back(run_pipeline(stream_segmenter, images, mode, t, k, frames, options.fps));
           const RunResult& r = runs.back();
           std::fprintf(stderr,
                        "bench_stream: T=%u K=%u %-10s %6.1f frames/s  e2e p50 %6.1f p99 %6.1f max %6.1f ms  dropped "

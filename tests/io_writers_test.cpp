@@ -227,9 +227,9 @@ TEST(IoWriterPcd, ObjectFieldFollowsLabelInBothEncodings) {
                                         "COUNT 1 1 1 1 1 1\nWIDTH 9\nHEIGHT 7\n"
                                       : "FIELDS x y z label object\nSIZE 4 4 4 4 4\nTYPE F F F U U\n"
                                         "COUNT 1 1 1 1 1\nWIDTH 9\nHEIGHT 7\n";
-    const std::string binary = as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary));
+    const std::string binary = as_text(encode_labelled_pcd(cloud, labels, PcdEncoding::binary, &objects));
     const std::string compressed =
-        as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary_compressed));
+        as_text(encode_labelled_pcd(cloud, labels, PcdEncoding::binary_compressed, &objects));
     EXPECT_NE(binary.find("VERSION 0.7\n" + header), std::string::npos) << binary.substr(0, 300);
     EXPECT_NE(compressed.find("VERSION 0.7\n" + header), std::string::npos);
     const std::size_t data = data_start(compressed, "DATA binary_compressed\n");
@@ -251,16 +251,11 @@ TEST(IoWriterPcd, WithoutObjectsTheBytesAreAsBefore) {
   const Labels labels = labels_for(cloud), objects = objects_for(labels);
   for (const PcdEncoding encoding : {PcdEncoding::binary, PcdEncoding::binary_compressed}) {
     const Bytes before = encode_labelled_pcd(cloud, labels, encoding);
-    EXPECT_EQ(encode_labelled_pcd(cloud, labels, nullptr, encoding), before);
     EXPECT_EQ(encode_labelled_pcd(cloud, labels, encoding, nullptr), before);
     EXPECT_EQ(as_text(before).find("object"), std::string::npos);
-    EXPECT_EQ(encode_labelled_pcd(cloud, labels, encoding, &objects),
-              encode_labelled_pcd(cloud, labels, &objects, encoding));
   }
-  EXPECT_EQ(encode_labelled_pcd(cloud, labels, &objects),
-            encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary));
   const Labels short_objects(4, 1);
-  expect_lccp_error([&] { encode_labelled_pcd(cloud, labels, &short_objects); },
+  expect_lccp_error([&] { encode_labelled_pcd(cloud, labels, PcdEncoding::binary, &short_objects); },
                     {"objects and points differ in number"});
 }
 
@@ -268,11 +263,11 @@ TEST(IoWriterPcd, FilesWithObjectsReadBack) {
   const PointCloud cloud = organized_cloud(16, 12, true);
   const Labels labels = labels_for(cloud), objects = objects_for(labels);
   const fs::path dir = scratch_dir();
-  write_labelled_pcd(dir / "binary.pcd", cloud, labels, &objects);
-  write_labelled_pcd(dir / "compressed.pcd", cloud, labels, &objects, PcdEncoding::binary_compressed);
-  EXPECT_EQ(test::read_bytes(dir / "binary.pcd"), as_text(encode_labelled_pcd(cloud, labels, &objects)));
+  write_labelled_pcd(dir / "binary.pcd", cloud, labels, PcdEncoding::binary, &objects);
+  write_labelled_pcd(dir / "compressed.pcd", cloud, labels, PcdEncoding::binary_compressed, &objects);
+  EXPECT_EQ(test::read_bytes(dir / "binary.pcd"), as_text(encode_labelled_pcd(cloud, labels, PcdEncoding::binary, &objects)));
   EXPECT_EQ(test::read_bytes(dir / "compressed.pcd"),
-            as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary_compressed)));
+            as_text(encode_labelled_pcd(cloud, labels, PcdEncoding::binary_compressed, &objects)));
   for (const char* name : {"binary.pcd", "compressed.pcd"}) expect_same_cloud(read_cloud(dir / name), cloud, labels);
 }
 
@@ -382,27 +377,24 @@ TEST(IoWriterCloud, ExtensionPicksTheFormatWithObjects) {
   const PointCloud cloud = organized_cloud(8, 6, true);
   const Labels labels = labels_for(cloud), objects = objects_for(labels);
   const fs::path dir = scratch_dir();
-  write_labelled_cloud(dir / "a.pcd", cloud, labels, &objects);
-  write_labelled_cloud(dir / "b.ply", cloud, labels, &objects);
-  write_labelled_cloud(dir / "c.pcd", cloud, labels, &objects, PcdEncoding::binary);
+  write_labelled_cloud(dir / "a.pcd", cloud, labels, PcdEncoding::binary_compressed, &objects);
+  write_labelled_cloud(dir / "b.ply", cloud, labels, PcdEncoding::binary_compressed, &objects);
+  write_labelled_cloud(dir / "c.pcd", cloud, labels, PcdEncoding::binary, &objects);
   EXPECT_EQ(test::read_bytes(dir / "a.pcd"),
-            as_text(encode_labelled_pcd(cloud, labels, &objects, PcdEncoding::binary_compressed)));
+            as_text(encode_labelled_pcd(cloud, labels, PcdEncoding::binary_compressed, &objects)));
   EXPECT_EQ(test::read_bytes(dir / "b.ply"), as_text(encode_labelled_ply(cloud, labels, &objects)));
-  EXPECT_EQ(test::read_bytes(dir / "c.pcd"), as_text(encode_labelled_pcd(cloud, labels, &objects)));
-  EXPECT_EQ(encode_labelled_cloud("x.pcd", cloud, labels, nullptr), encode_labelled_cloud("x.pcd", cloud, labels));
-  EXPECT_EQ(encode_labelled_cloud("x.ply", cloud, labels, nullptr), encode_labelled_ply(cloud, labels));
+  EXPECT_EQ(test::read_bytes(dir / "c.pcd"), as_text(encode_labelled_pcd(cloud, labels, PcdEncoding::binary, &objects)));
+  EXPECT_EQ(encode_labelled_cloud("x.pcd", cloud, labels, PcdEncoding::binary_compressed, nullptr), encode_labelled_cloud("x.pcd", cloud, labels));
+  EXPECT_EQ(encode_labelled_cloud("x.ply", cloud, labels, PcdEncoding::binary_compressed, nullptr), encode_labelled_ply(cloud, labels));
   for (const char* name : {"a.pcd", "b.ply", "c.pcd"}) expect_same_cloud(read_cloud(dir / name), cloud, labels);
-  // The encoding may also come before the objects.
-  EXPECT_EQ(encode_labelled_cloud("x.pcd", cloud, labels, PcdEncoding::binary, &objects),
-            encode_labelled_cloud("x.pcd", cloud, labels, &objects, PcdEncoding::binary));
   write_labelled_cloud(dir / "d.pcd", cloud, labels, PcdEncoding::binary, &objects);
   write_labelled_pcd(dir / "e.pcd", cloud, labels, PcdEncoding::binary, &objects);
   EXPECT_EQ(test::read_bytes(dir / "d.pcd"), test::read_bytes(dir / "c.pcd"));
   EXPECT_EQ(test::read_bytes(dir / "e.pcd"), test::read_bytes(dir / "c.pcd"));
   const Labels short_objects(3, 1);
-  expect_lccp_error([&] { write_labelled_cloud(dir / "short.ply", cloud, labels, &short_objects); },
+  expect_lccp_error([&] { write_labelled_cloud(dir / "short.ply", cloud, labels, PcdEncoding::binary_compressed, &short_objects); },
                     {"short.ply: objects and points differ in number"});
-  expect_lccp_error([&] { encode_labelled_cloud(dir / "short.pcd", cloud, labels, &short_objects); },
+  expect_lccp_error([&] { encode_labelled_cloud(dir / "short.pcd", cloud, labels, PcdEncoding::binary_compressed, &short_objects); },
                     {"short.pcd: objects and points differ in number"});
   EXPECT_FALSE(fs::exists(dir / "short.ply"));
 }

@@ -60,17 +60,18 @@ class ProfileCliTest : public LccpBinaryTest {
     args.insert(args.end(), {"-o", out_.string(), "--quiet", "--log-level", "warn"});
     return run_lccp(capture_, args, timeout_seconds);
   }
-  // frames.csv: the header, then one row of 15 fields per frame with increasing indices.
+  // frames.csv: the header, then one row of 19 fields per frame with increasing indices.
   std::size_t check_frames_csv() {
     const std::vector<std::string> lines = lines_of(read_bytes(out_ / "frames.csv"));
     EXPECT_FALSE(lines.empty());
     if (lines.empty()) return 0;
     EXPECT_EQ(lines[0],
-              "index,timestamp_us,captured_s,back_projection_ms,voxelize_ms,normals_ms,seeds_ms,growth_ms,"
-              "adjacency_ms,classify_ms,components_ms,filter_ms,end_to_end_ms,segments,failed");
+              "index,timestamp_us,captured_s,back_projection_ms,support_ms,voxelize_ms,normals_ms,seeds_ms,growth_ms,"
+              "adjacency_ms,classify_ms,components_ms,filter_ms,parts_ms,geometry_ms,ids_ms,end_to_end_ms,segments,"
+              "failed");
     for (std::size_t row = 1; row < lines.size(); ++row) {
       const std::vector<std::string> fields = fields_of(lines[row]);
-      EXPECT_EQ(fields.size(), 15u) << lines[row];
+      EXPECT_EQ(fields.size(), 19u) << lines[row];
       if (row > 1) {
         EXPECT_GT(std::stoull(fields_of(lines[row])[0]), std::stoull(fields_of(lines[row - 1])[0])) << lines[row];
       }

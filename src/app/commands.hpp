@@ -47,7 +47,7 @@ struct ConfigOptions {
   std::vector<std::string> settings;
 
   void add_to(CLI::App& command);
-  LccpConfig resolve() const;  // defaults (P1) <- preset or file <- settings
+  SceneConfig resolve() const;  // defaults (P1) <- preset or file <- settings
 };
 
 }  // namespace lccp::app

@@ -15,7 +15,7 @@ std::string preset_names() {
 }
 
 // A preset's name (no folder, no suffix) or a YAML file.
-LccpConfig load_preset_or_file(const std::string& name_or_path) {
+SceneConfig load_preset_or_file(const std::string& name_or_path) {
   for (const Preset& preset : presets()) {
     if (preset.name == name_or_path) return parse_config(preset.yaml, "preset " + name_or_path);
   }
@@ -31,10 +31,10 @@ void ConfigOptions::add_to(CLI::App& command) {
   command.add_option("--set", settings, "override one parameter: key=value (repeatable)");
 }
 
-LccpConfig ConfigOptions::resolve() const {
-  LccpConfig config = file.empty() ? LccpConfig{} : load_preset_or_file(file);
+SceneConfig ConfigOptions::resolve() const {
+  SceneConfig config = file.empty() ? SceneConfig{} : load_preset_or_file(file);
   for (const std::string& setting : settings) apply_setting(config, setting);
-  return config;  // LccpSegmenter validates it
+  return config;  // SceneSegmenter validates it
 }
 
 }  // namespace lccp::app

@@ -6,15 +6,17 @@
 #include "commands.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/atomic_file.hpp"
+#include "lccp/io/segments_json.hpp"
 
 namespace lccp::app {
 
 void FrameOutputOptions::add_to(CLI::App& command, std::vector<std::string> default_save) {
   save = std::move(default_save);
   command.add_option("-o,--output-dir", directory, "folder for per-frame outputs and summary.json (created if missing)");
-  save_option = command.add_option("--save", save, "per-frame outputs: pcd, ply (labelled clouds), png (label image)")
+  save_option = command.add_option("--save", save, "per-frame outputs: pcd, ply (labelled clouds), png (label image), "
+                                             "segments (per-segment geometry, JSON)")
                     ->delimiter(',')
-                    ->check(CLI::IsMember({"pcd", "ply", "png"}))
+                    ->check(CLI::IsMember({"pcd", "ply", "png", "segments"}))
                     ->capture_default_str();
   command.add_flag("--overlay", overlay, "label images over the shaded depth image, so the scene shows");
   command.add_option("--pcd-data", pcd_data, "PCD encoding: binary_compressed or binary")
@@ -60,17 +62,28 @@ void FrameWriter::write(const FrameResult& result) {
   if (!result.frame.name.empty() && !input_stems_.insert(name).second) {
     throw Error("two inputs named " + name + ": their outputs would overwrite each other");
   }
+  write_files_together(frame_files(result, (directory_ / name).string()));  // together or not at all
+}
+
+std::vector<FileBytes> FrameWriter::frame_files(const FrameResult& result, const std::string& stem) const {
   const PointCloud& cloud = result.frame.cloud;
+  const SceneSegmentation& scene = result.segmentation;
   const Labels no_labels(cloud.size(), 0);
-  const Labels& labels = result.segmentation.labels.size() == cloud.size() ? result.segmentation.labels : no_labels;
-  const std::string stem = (directory_ / name).string();
+  const Labels& labels = scene.labels.size() == cloud.size() ? scene.labels : no_labels;
+  const Labels* objects = scene.objects.size() == cloud.size() ? &scene.objects : nullptr;
   std::vector<FileBytes> files;
-  if (options_.saves("pcd")) files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels, options_.pcd_encoding())});
-  if (options_.saves("ply")) files.push_back({stem + ".ply", encode_labelled_ply(cloud, labels)});
-  if (options_.saves("png") && cloud.organized()) {
-    files.push_back({stem + ".png", encode_label_png(cloud, labels, options_.image_style())});
+  if (options_.saves("pcd")) {
+    files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels, options_.pcd_encoding(), objects)});
   }
-  write_files_together(files);  // a frame's outputs appear together or not at all
+  if (options_.saves("ply")) files.push_back({stem + ".ply", encode_labelled_ply(cloud, labels, objects)});
+  if (options_.saves("png") && cloud.organized()) {
+    files.push_back({stem + ".png", encode_label_png(cloud, labels, options_.image_style(), objects)});
+  }
+  if (options_.saves("segments")) {
+    const std::string json = encode_segments_json(result.frame.index, result.frame.timestamp_us, scene);
+    files.push_back({stem + ".segments.json", std::vector<std::uint8_t>(json.begin(), json.end())});
+  }
+  return files;
 }
 
 }  // namespace lccp::app

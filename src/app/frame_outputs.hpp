@@ -1,5 +1,6 @@
 #pragma once
-// Per-frame outputs of a stream run: labelled PCD / PLY and colour label PNG in a folder.
+// Per-frame outputs of a stream run: labelled PCD / PLY, colour label PNG and
+// per-segment geometry (JSON) in a folder.
 #include <filesystem>
 #include <set>
 #include <string>
@@ -7,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "lccp/io/atomic_file.hpp"
 #include "lccp/io/cloud_io.hpp"
 #include "lccp/pipeline/pipeline.hpp"
 
@@ -14,7 +16,7 @@ namespace lccp::app {
 
 struct FrameOutputOptions {
   std::string directory;                 // empty: no per-frame outputs
-  std::vector<std::string> save{"png"};  // any of pcd, ply, png
+  std::vector<std::string> save{"png"};  // any of pcd, ply, png, segments
   bool overlay = false;                  // label images over the shaded depth image
   std::string pcd_data = "binary_compressed";
   CLI::Option* save_option = nullptr;    // to tell a given --save from the default
@@ -41,6 +43,8 @@ class FrameWriter {
   void write(const FrameResult& result);
 
  private:
+  std::vector<FileBytes> frame_files(const FrameResult& result, const std::string& stem) const;
+
   FrameOutputOptions options_;
   std::filesystem::path directory_;
   std::set<std::string> input_stems_;  // names taken from input files

@@ -44,7 +44,7 @@ ProfileSetup profile_setup(const ProfileCommandOptions& options, const FrameSour
 }
 
 int run_profile(const ProfileCommandOptions& options, std::stop_token stop) {
-  const LccpSegmenter segmenter(options.config.resolve());
+  const SceneSegmenter segmenter(options.config.resolve());
   const auto source = open_source(options.sources, {options.limits.limits(), options.realtime});
   const ProfileSetup setup = profile_setup(options, *source);
   const std::filesystem::path directory(options.directory);

@@ -18,7 +18,10 @@ using Kind = LatencyRow::Kind;
 constexpr double kFramePeriodMs = 1000.0 / 30.0;  // a 30 Hz sensor
 
 // The colours of the pipeline nodes and of the waiting time, in latency_rows() order.
-constexpr std::array<const char*, 5> kPartColours{"#8c564b", "#1f77b4", "#2ca02c", "#9467bd", "#c7c7c7"};
+// Back-projection, one per kPipelineNodes entry, waiting.
+constexpr std::array<const char*, 7> kPartColours{"#8c564b", "#1f77b4", "#2ca02c", "#9467bd",
+                                                  "#e377c2", "#17becf", "#c7c7c7"};
+static_assert(kPartColours.size() == kPipelineNodes.size() + 2);
 
 const char* policy_name(DropPolicy policy) { return policy == DropPolicy::drop_oldest ? "drop_oldest" : "block"; }
 
@@ -56,7 +59,7 @@ std::string json_config_value(const std::string& text) {
 }
 
 // (key, value) of every config key, from describe_config's "key: value    # meaning" lines.
-std::vector<std::pair<std::string, std::string>> config_entries(const LccpConfig& config) {
+std::vector<std::pair<std::string, std::string>> config_entries(const SceneConfig& config) {
   std::vector<std::pair<std::string, std::string>> entries;
   std::istringstream lines(describe_config(config));
   for (std::string line; std::getline(lines, line);) {

@@ -19,7 +19,7 @@ struct ProfileSetup {
   SourceKind kind = SourceKind::recording;
   std::string config_file;            // empty: the defaults (P1)
   std::vector<std::string> settings;  // --set key=value, in order
-  LccpConfig config;                  // the result
+  SceneConfig config;                 // the result
   unsigned threads = 1;               // TBB's thread limit (--threads, else every core)
   unsigned frames_in_flight = 2;      // K
   DropPolicy drop_policy = DropPolicy::block;

@@ -5,10 +5,11 @@
 
 #include "commands.hpp"
 #include "lccp/capture/cloud_files.hpp"
-#include "lccp/core/lccp.hpp"
+#include "lccp/objects/scene.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/atomic_file.hpp"
 #include "lccp/io/cloud_io.hpp"
+#include "lccp/io/segments_json.hpp"
 #include "stream_run.hpp"
 
 namespace lccp::app {
@@ -19,10 +20,11 @@ namespace fs = std::filesystem;
 struct SegmentOptions {
   std::vector<std::string> inputs;
   std::string png;
+  std::string segments;  // one input: per-segment geometry (JSON)
   StreamOptions stream;  // -o, --save, --overlay, --pcd-data, --config, --set, --inflight, --quiet
 };
 
-void print_summary(const PointCloud& cloud, const SegmentationResult& r) {
+void print_summary(const PointCloud& cloud, const SceneSegmentation& r) {
   std::size_t finite = 0;
   for (const auto& p : cloud.points) finite += is_finite(p);
   std::string times;
@@ -31,8 +33,10 @@ void print_summary(const PointCloud& cloud, const SegmentationResult& r) {
     std::snprintf(time, sizeof time, " %.1f", r.times[info.stage]);
     times += " " + std::string(info.name) + time;
   }
-  std::printf("points %zu (finite %zu), voxels %u, supervoxels %u, segments %u | ms:%s total %.1f\n", cloud.size(), finite,
-              r.voxel_count, r.supervoxel_count, r.segment_count, times.c_str(), r.times.total_ms());
+  const std::string parts = r.objects.empty() ? "" : ", parts " + std::to_string(r.segment_count);
+  std::printf("points %zu (finite %zu), voxels %u, supervoxels %u, %s %u%s | ms:%s total %.1f\n", cloud.size(),
+              finite, r.voxel_count, r.supervoxel_count, r.objects.empty() ? "segments" : "objects", r.object_count,
+              parts.c_str(), times.c_str(), r.times.total_ms());
 }
 
 // -o or --png naming the input (or the same file by another path) would destroy it.
@@ -52,16 +56,23 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
   if (options.stream.outputs.save_option->count() > 0) {
     throw UsageError("--save is for several inputs; for one, -o's extension picks the format and --png adds the image");
   }
-  const LccpSegmenter segmenter(options.stream.config.resolve());
-  refuse_overwriting_input(input, {output, options.png});
+  const SceneSegmenter segmenter(options.stream.config.resolve());
+  refuse_overwriting_input(input, {output, options.png, options.segments});
   const FrameOutputOptions& out = options.stream.outputs;
   const PointCloud cloud = read_cloud(input).cloud;
   if (!options.png.empty() && !cloud.organized()) throw Error(input + ": --png needs an organized (image-shaped) cloud");
-  const SegmentationResult result = segmenter.segment(cloud);
+  const SceneSegmentation result = segmenter.segment(cloud);
   if (stop.stop_requested()) return kExitInterrupted;  // interrupted: nothing written
-  std::vector<FileBytes> files{{output, encode_labelled_cloud(output, cloud, result.labels, out.pcd_encoding())}};
-  if (!options.png.empty()) files.push_back({options.png, encode_label_png(cloud, result.labels, out.image_style())});
-  write_files_together(files);  // both appear, or neither does
+  const Labels* objects = result.objects.empty() ? nullptr : &result.objects;
+  std::vector<FileBytes> files{{output, encode_labelled_cloud(output, cloud, result.labels, out.pcd_encoding(), objects)}};
+  if (!options.png.empty()) {
+    files.push_back({options.png, encode_label_png(cloud, result.labels, out.image_style(), objects)});
+  }
+  if (!options.segments.empty()) {
+    const std::string json = encode_segments_json(0, 0, result);
+    files.push_back({options.segments, std::vector<std::uint8_t>(json.begin(), json.end())});
+  }
+  write_files_together(files);  // all appear, or none does
   print_summary(cloud, result);
   return kExitDone;
 }
@@ -69,6 +80,9 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
 // Several inputs or a folder: the clouds stream through the pipeline into the folder -o names.
 int segment_many(const SegmentOptions& options, std::stop_token stop) {
   if (!options.png.empty()) throw UsageError("--png names one image: with several inputs use --save pcd,png");
+  if (!options.segments.empty()) {
+    throw UsageError("--segments names one file: with several inputs use --save pcd,segments");
+  }
   options.stream.outputs.check();
   const auto source = limit_source(open_cloud_files(std::vector<fs::path>(options.inputs.begin(), options.inputs.end())),
                                    options.stream.limits.limits());
@@ -96,6 +110,8 @@ Subcommand add_segment_command(CLI::App& cli) {
   command->get_option("--save")->default_str("pcd");
   options->stream.outputs.save = {"pcd"};
   command->add_option("--png", options->png, "one input: also write a colour image of the labels (organized clouds)");
+  command->add_option("--segments", options->segments,
+                      "one input: also write the objects' and parts' geometry as JSON (schema: README)");
   return {command, [options](std::stop_token stop) {
             return is_single(*options) ? segment_one(*options, stop) : segment_many(*options, stop);
           }};

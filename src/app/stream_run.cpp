@@ -77,7 +77,7 @@ SourceLimits LimitOptions::limits() const {
   return limits;
 }
 
-PipelineRun run_pipeline(FrameSource& source, const LccpSegmenter& segmenter, const PipelineRunOptions& options,
+PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, const PipelineRunOptions& options,
                          std::stop_token stop, const std::function<void(const FrameResult&)>& on_frame) {
   const Pipeline pipeline(segmenter, PipelineConfig{options.frames_in_flight});
   const Clock::time_point start = Clock::now();
@@ -117,7 +117,7 @@ void StreamOptions::add_to(CLI::App& command) {
 
 int run_stream(FrameSource& source, const StreamOptions& options, const std::string& description,
                std::stop_token stop) {
-  const LccpSegmenter segmenter(options.config.resolve());
+  const SceneSegmenter segmenter(options.config.resolve());
   FrameWriter writer(options.outputs);
   const PipelineRun run = run_pipeline(source, segmenter, {options.frames_in_flight, !options.quiet}, stop,
                                        [&](const FrameResult& result) { writer.write(result); });

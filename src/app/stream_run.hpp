@@ -39,7 +39,7 @@ struct PipelineRun {
 
 // Segments the frames of `source` on the pipeline and records each frame
 // handed over; `on_frame`, if given, sees each in order before it is recorded.
-PipelineRun run_pipeline(FrameSource& source, const LccpSegmenter& segmenter, const PipelineRunOptions& options,
+PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, const PipelineRunOptions& options,
                          std::stop_token stop, const std::function<void(const FrameResult&)>& on_frame = {});
 
 // The exit code of a run whose outputs are written: throws lccp::Error for its

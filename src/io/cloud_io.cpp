@@ -101,42 +101,21 @@ LabelledCloud read_cloud(const std::filesystem::path& path, const ReadLimits& li
 }
 
 std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
-                                                const PointCloud& cloud, const Labels& labels, const Labels* objects,
-                                                PcdEncoding encoding) {
+                                                const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
+                                                const Labels* objects) {
   const std::string ext = lower_extension(path_for_extension);
   if (ext != ".pcd" && ext != ".ply")
     fail(path_for_extension,
          "unknown output format '" + path_for_extension.extension().string() + "' (use .pcd or .ply)");
   return encode_for(path_for_extension, [&] {
-    return ext == ".pcd" ? encode_labelled_pcd(cloud, labels, objects, encoding)
+    return ext == ".pcd" ? encode_labelled_pcd(cloud, labels, encoding, objects)
                          : encode_labelled_ply(cloud, labels, objects);
   });
 }
 
-std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
-                                                const PointCloud& cloud, const Labels& labels, PcdEncoding encoding) {
-  return encode_labelled_cloud(path_for_extension, cloud, labels, nullptr, encoding);
-}
-
-std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
-                                                const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
-                                                const Labels* objects) {
-  return encode_labelled_cloud(path_for_extension, cloud, labels, objects, encoding);
-}
-
-void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                        const Labels* objects, PcdEncoding encoding) {
-  write_file_atomically(path, encode_for(path, [&] { return encode_labelled_pcd(cloud, labels, objects, encoding); }));
-}
-
-void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                        PcdEncoding encoding) {
-  write_labelled_pcd(path, cloud, labels, nullptr, encoding);
-}
-
 void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
                         PcdEncoding encoding, const Labels* objects) {
-  write_labelled_pcd(path, cloud, labels, objects, encoding);
+  write_file_atomically(path, encode_for(path, [&] { return encode_labelled_pcd(cloud, labels, encoding, objects); }));
 }
 
 void write_labelled_ply(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
@@ -145,18 +124,8 @@ void write_labelled_ply(const std::filesystem::path& path, const PointCloud& clo
 }
 
 void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                          const Labels* objects, PcdEncoding encoding) {
-  write_file_atomically(path, encode_labelled_cloud(path, cloud, labels, objects, encoding));
-}
-
-void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                          PcdEncoding encoding) {
-  write_labelled_cloud(path, cloud, labels, nullptr, encoding);
-}
-
-void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
                           PcdEncoding encoding, const Labels* objects) {
-  write_labelled_cloud(path, cloud, labels, objects, encoding);
+  write_file_atomically(path, encode_labelled_cloud(path, cloud, labels, encoding, objects));
 }
 
 void write_label_png(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,

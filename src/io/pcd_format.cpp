@@ -377,8 +377,8 @@ void append_compressed(const PcdColumns& columns, std::vector<std::uint8_t>& out
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, const Labels* objects,
-                                              PcdEncoding encoding) {
+std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
+                                              const Labels* objects) {
   check_labelled_cloud(cloud, labels, objects);
   const PcdColumns columns{cloud, labels, objects};
   const bool compressed = encoding == PcdEncoding::binary_compressed;
@@ -387,15 +387,6 @@ std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Lab
   if (compressed) append_compressed(columns, out);
   else append_binary(columns, out);
   return out;
-}
-
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding) {
-  return encode_labelled_pcd(cloud, labels, nullptr, encoding);
-}
-
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
-                                              const Labels* objects) {
-  return encode_labelled_pcd(cloud, labels, objects, encoding);
 }
 
 LabelledCloud parse_pcd(std::span<const std::uint8_t> bytes, std::string_view name, const ReadLimits& limits) {

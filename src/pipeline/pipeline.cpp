@@ -1,8 +1,9 @@
 // The streaming pipeline as a oneTBB flow graph:
 //
 //   capture thread --(admission: K slots)--> entry (async_node gateway)
-//     -> back-projection -> one node per kPipelineNodes entry (kStages grouped by
-//        StageInfo::node) -> sequencer -> deliver (serial: the sink)
+//     -> back-projection -> one node per kPipelineNodes entry but the last
+//        (kStages grouped by StageInfo::node) -> sequencer
+//     -> deliver (serial, in frame order: the last node's stages, stable ids, then the sink)
 //     -> the slot goes back to admission
 //
 // The source is read on a thread of its own, never on a TBB thread: a blocking
@@ -36,7 +37,7 @@ namespace flow = tbb::flow;
 struct FrameInFlight {
   std::uint64_t sequence = 0;  // 0, 1, 2, ... in the order frames entered the graph
   FrameResult result;
-  std::optional<SegmentationWork> work;  // over result.frame.cloud, once it exists
+  std::optional<SceneWork> work;  // over result.frame.cloud, once it exists
 };
 using Message = std::shared_ptr<FrameInFlight>;
 using Entry = flow::async_node<flow::continue_msg, Message>;
@@ -87,12 +88,12 @@ Message back_project_frame(const Message& message) {
 // After the last stage: the result leaves `work`, which is freed. A failed
 // frame has no segment: every point unlabelled, the stage times kept.
 void finish_frame(FrameInFlight& f) {
-  SegmentationResult& segmentation = f.result.segmentation;
+  SceneSegmentation& segmentation = f.result.segmentation;
   if (f.work) segmentation = std::move(f.work->result);
   f.work.reset();
   if (!f.result.error.empty()) {
     const StageTimes times = segmentation.times;
-    segmentation = SegmentationResult{};
+    segmentation = SceneSegmentation{};
     segmentation.labels.assign(f.result.frame.cloud.size(), 0);
     segmentation.times = times;
   }
@@ -115,7 +116,7 @@ class OnExit {
 // One run(): the graph, the capture thread's loop, the counts and the first error.
 class Run {
  public:
-  Run(const LccpSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
+  Run(const SceneSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
       unsigned frames_in_flight, std::stop_token stop);
   PipelineOutcome execute();
 
@@ -126,7 +127,8 @@ class Run {
   void deliver(const Message& message);
   void fail(std::string error);
 
-  const LccpSegmenter& segmenter_;
+  const SceneSegmenter& segmenter_;
+  SegmentTracker tracker_;  // deliver_ only
   FrameSource& source_;
   const std::function<void(FrameResult&)>& sink_;
   const DropPolicy policy_;
@@ -135,7 +137,7 @@ class Run {
   flow::graph graph_;
   Entry entry_;
   Node back_projection_;
-  std::vector<std::unique_ptr<Node>> stage_nodes_;  // one per kPipelineNodes entry
+  std::vector<std::unique_ptr<Node>> stage_nodes_;  // one per kPipelineNodes entry but the last (deliver_'s)
   flow::sequencer_node<Message> in_order_;
   flow::function_node<Message> deliver_;
   std::stop_callback<std::function<void()>> close_on_halt_;
@@ -148,9 +150,10 @@ class Run {
   bool sink_failed_ = false;               // deliver_ only (a serial node)
 };
 
-Run::Run(const LccpSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
+Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
          unsigned frames_in_flight, std::stop_token stop)
     : segmenter_(segmenter),
+      tracker_(segmenter.new_tracker()),
       source_(source),
       sink_(sink),
       policy_(drop_policy_for(source)),
@@ -175,7 +178,7 @@ Run::Run(const LccpSegmenter& segmenter, FrameSource& source, const std::functio
       halt_on_stop_(std::move(stop), [this] { halt_.request_stop(); }) {
   flow::make_edge(entry_, back_projection_);
   flow::sender<Message>* previous = &back_projection_;
-  for (unsigned node = 0; node < kPipelineNodes.size(); ++node) {
+  for (unsigned node = 0; node + 1 < kPipelineNodes.size(); ++node) {
     stage_nodes_.push_back(std::make_unique<Node>(
         graph_, flow::unlimited, [this, node](const Message& message) { return run_node(node, message); }));
     flow::make_edge(*previous, *stage_nodes_.back());
@@ -190,7 +193,6 @@ Message Run::run_node(unsigned node, const Message& message) const {
   for (const StageInfo& info : kStages) {
     if (info.node == node) run_guarded(f, [&] { segmenter_.run_stage(info.stage, *f.work); });
   }
-  if (node + 1 == kPipelineNodes.size()) finish_frame(f);
   return message;
 }
 
@@ -226,7 +228,11 @@ void Run::take(Frame frame) {
 }
 
 void Run::deliver(const Message& message) {
-  FrameResult& result = message->result;
+  FrameInFlight& f = *message;
+  if (f.work) f.work->tracker = &tracker_;
+  run_node(kPipelineNodes.size() - 1, message);
+  finish_frame(f);
+  FrameResult& result = f.result;
   const bool stage_failed = !result.error.empty();  // before the sink, which may move the result
   if (sink_failed_) {
     ++stats_.frames_dropped;
@@ -268,7 +274,7 @@ PipelineOutcome Run::execute() {
 
 }  // namespace
 
-Pipeline::Pipeline(const LccpSegmenter& segmenter, PipelineConfig config) : segmenter_(segmenter), config_(config) {
+Pipeline::Pipeline(const SceneSegmenter& segmenter, PipelineConfig config) : segmenter_(segmenter), config_(config) {
   if (config_.frames_in_flight == 0) throw Error("frames_in_flight must be at least 1");
 }
 

@@ -64,13 +64,8 @@ enum class PcdEncoding { binary, binary_compressed };
 // (binary_compressed) the data exceeds PCL's limit of 2863311530 bytes (its
 // two uint32 sizes must hold 3/2 of it).
 std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels,
-                                              PcdEncoding encoding = PcdEncoding::binary);
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, const Labels* objects,
-                                              PcdEncoding encoding = PcdEncoding::binary);
-// The same, the encoding before the objects (as with every function here
-// that takes both).
-std::vector<std::uint8_t> encode_labelled_pcd(const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
-                                              const Labels* objects);
+                                              PcdEncoding encoding = PcdEncoding::binary,
+                                              const Labels* objects = nullptr);
 
 // A binary_little_endian 1.0 PLY: one `vertex` element of x y z (float,
 // metres; NaN points written as NaN, so there is a vertex per point), red
@@ -88,13 +83,8 @@ std::vector<std::uint8_t> encode_labelled_ply(const PointCloud& cloud, const Lab
 // 'EXT' (use .pcd or .ply)" for any other extension, or an encoder's error.
 std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
                                                 const PointCloud& cloud, const Labels& labels,
-                                                PcdEncoding encoding = PcdEncoding::binary_compressed);
-std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
-                                                const PointCloud& cloud, const Labels& labels, const Labels* objects,
-                                                PcdEncoding encoding = PcdEncoding::binary_compressed);
-std::vector<std::uint8_t> encode_labelled_cloud(const std::filesystem::path& path_for_extension,
-                                                const PointCloud& cloud, const Labels& labels, PcdEncoding encoding,
-                                                const Labels* objects);
+                                                PcdEncoding encoding = PcdEncoding::binary_compressed,
+                                                const Labels* objects = nullptr);
 
 // What a label image shows. labels: label_color per point (black for label
 // 0). overlay: the scene as a grey rendering of its surface (Lambert shading
@@ -116,19 +106,11 @@ std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels
 // (lccp/io/atomic_file.hpp): the file appears only when complete. Errors
 // name the path.
 void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                        PcdEncoding encoding = PcdEncoding::binary);
-void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                        const Labels* objects, PcdEncoding encoding = PcdEncoding::binary);
-void write_labelled_pcd(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                        PcdEncoding encoding, const Labels* objects);
+                        PcdEncoding encoding = PcdEncoding::binary, const Labels* objects = nullptr);
 void write_labelled_ply(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
                         const Labels* objects = nullptr);
 void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                          PcdEncoding encoding = PcdEncoding::binary_compressed);
-void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                          const Labels* objects, PcdEncoding encoding = PcdEncoding::binary_compressed);
-void write_labelled_cloud(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
-                          PcdEncoding encoding, const Labels* objects);
+                          PcdEncoding encoding = PcdEncoding::binary_compressed, const Labels* objects = nullptr);
 void write_label_png(const std::filesystem::path& path, const PointCloud& cloud, const Labels& labels,
                      LabelImageStyle style = LabelImageStyle::labels, const Labels* objects = nullptr);
 

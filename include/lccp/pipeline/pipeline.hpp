@@ -3,16 +3,17 @@
 // with several frames in flight and hands results over in frame order.
 //
 //   source (read on a capture thread) -> admission (K slots) -> back-projection
-//          -> one node per kPipelineNodes entry (the stages of kStages)
-//          -> sequencer -> sink -> the slot goes back to admission
+//          -> one node per kPipelineNodes entry (the stages of kStages), frames in
+//             parallel -> sequencer -> the last node (stable ids) in frame order
+//          -> sink -> the slot goes back to admission
 #include <cstdint>
 #include <functional>
 #include <stop_token>
 #include <string>
 
 #include "lccp/frame_source.hpp"
-#include "lccp/core/lccp.hpp"
 #include "lccp/frame.hpp"
+#include "lccp/objects/scene.hpp"
 
 namespace lccp {
 
@@ -33,7 +34,7 @@ struct PipelineConfig {
 
 struct FrameResult {
   Frame frame;                      // its cloud is filled (back-projected if it came as depth)
-  SegmentationResult segmentation;  // labels per point of frame.cloud
+  SceneSegmentation segmentation;   // ids per point of frame.cloud, per-segment geometry
   double back_projection_ms = 0;
   Clock::time_point labels_ready{};  // when the last stage finished
   // Empty if every stage succeeded. Otherwise the failing stage's message (e.g.
@@ -74,7 +75,7 @@ struct PipelineOutcome {
 class Pipeline {
  public:
   // Throws lccp::Error for frames_in_flight == 0.
-  Pipeline(const LccpSegmenter& segmenter, PipelineConfig config);
+  Pipeline(const SceneSegmenter& segmenter, PipelineConfig config);
 
   // Pulls frames until the source ends, fails, or `stop` is requested; calls
   // `sink` for every frame that entered the graph, in frame order, one call at
@@ -86,7 +87,7 @@ class Pipeline {
                       std::stop_token stop = {}) const;
 
  private:
-  const LccpSegmenter& segmenter_;
+  const SceneSegmenter& segmenter_;
   PipelineConfig config_;
 };
 

@@ -1,0 +1,89 @@
+#pragma once
+// The paper's robot application (Sec. III.C, Fig. 5) on one frame: the support
+// plane removed (stage 0), objects segmented (stages 1-8, Fig. 5 B), each object
+// partitioned into parts (stage 9, Fig. 5 C), the geometry of every object and
+// part (stage 10), and ids matched to the previous frame's (stage 11). With a
+// one-level config the segments are the objects and stage 9 does nothing.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "lccp/cloud.hpp"
+#include "lccp/config.hpp"
+#include "lccp/core/lccp.hpp"
+#include "lccp/core/stages.hpp"
+#include "lccp/objects/geometry.hpp"
+#include "lccp/objects/tracking.hpp"
+
+namespace lccp {
+
+struct ObjectSegments {
+  SegmentGeometry object;
+  std::vector<SegmentGeometry> parts;  // empty with one level
+};
+
+// Ids: the support segment has id 1 when the config removes a support plane;
+// objects and parts share the ids after it, stable from frame to frame in a
+// stream (a single cloud gets them in label order: objects by size, then parts).
+struct SceneSegmentation {
+  Labels labels;   // per point: the id of its part (of its object with one level), the support's, or 0
+  Labels objects;  // per point: the id of its object, the support's, or 0; empty with one level
+  std::optional<Plane> support_plane;
+  std::uint32_t support_id = 0;       // 0: no support plane removed
+  std::vector<ObjectSegments> segments;  // objects in the first level's order (largest first)
+  std::vector<std::uint32_t> new_ids;    // first seen in this frame, ascending
+  std::vector<std::uint32_t> gone_ids;   // in the previous frame, not in this one, ascending
+  std::uint32_t voxel_count = 0;         // the first level's
+  std::uint32_t supervoxel_count = 0;    // the first level's
+  std::uint32_t object_count = 0;
+  std::uint32_t segment_count = 0;       // segments of the finest level (parts, or objects)
+  StageTimes times;
+};
+
+// The part level of one object: its points as a cloud of their own, segmented.
+struct ObjectParts {
+  explicit ObjectParts(PointCloud points) : cloud(std::move(points)), work(cloud) {}
+  PointCloud cloud;                   // the object's points
+  std::vector<std::uint32_t> indices; // their indices in the frame's cloud
+  SegmentationWork work;              // over `cloud`
+};
+
+// One frame on its way through the stages of kStages.
+struct SceneWork {
+  explicit SceneWork(const PointCloud& cloud) : objects(cloud) {}
+
+  SegmentationWork objects;                          // stages 0-8
+  std::vector<std::unique_ptr<ObjectParts>> parts;   // stage 9: one per object
+  std::vector<ObjectSegments> segments;              // stage 10, by dense labels
+  SegmentTracker* tracker = nullptr;                 // stage 11: the stream's; null: ids in label order
+  SceneSegmentation result;                          // stage 11 (labels, ids); times from every stage
+};
+
+class SceneSegmenter {
+ public:
+  // Throws lccp::Error if the config is out of range.
+  explicit SceneSegmenter(const SceneConfig& config);
+
+  // Segments one cloud; ids in label order. Deterministic, whatever the thread count.
+  SceneSegmentation segment(const PointCloud& cloud) const;
+
+  // Runs one stage on `work` and adds its time to work.result.times, in kStages
+  // order. Stage 11 needs work.tracker.
+  void run_stage(Stage stage, SceneWork& work) const;
+
+  // A tracker for a stream: ids after the support's.
+  SegmentTracker new_tracker() const;
+
+  const SceneConfig& config() const { return config_; }
+
+ private:
+  void partition_objects(SceneWork& work) const;
+  void describe(SceneWork& work) const;
+  void assign_ids(SceneWork& work) const;
+
+  SceneConfig config_;
+  LccpSegmenter objects_;
+};
+
+}  // namespace lccp

@@ -1,0 +1,156 @@
+#include "lccp/objects/scene.hpp"
+
+#include <chrono>
+
+#include <tbb/parallel_for.h>
+
+namespace lccp {
+namespace {
+
+constexpr std::uint32_t kSupportId = 1;  // trackers start after it when the config removes a support plane
+
+// Point indices per object 1..K (a counting sort by object label).
+std::vector<std::vector<std::uint32_t>> points_by_object(const Labels& objects, std::uint32_t object_count) {
+  std::vector<std::vector<std::uint32_t>> members(object_count);
+  for (std::uint32_t i = 0; i < objects.size(); ++i) {
+    if (objects[i] != 0) members[objects[i] - 1].push_back(i);
+  }
+  return members;
+}
+
+PointCloud gather(const PointCloud& cloud, const std::vector<std::uint32_t>& indices) {
+  PointCloud part;
+  part.width = static_cast<std::uint32_t>(indices.size());
+  part.points.reserve(indices.size());
+  for (std::uint32_t i : indices) part.points.push_back(cloud.points[i]);
+  if (cloud.has_colors()) {
+    for (std::uint32_t i : indices) part.colors.push_back(cloud.colors[i]);
+  }
+  if (cloud.has_normals()) {
+    for (std::uint32_t i : indices) part.normals.push_back(cloud.normals[i]);
+  }
+  return part;
+}
+
+// Dense global part labels: object k's parts come after those of objects 1..k-1.
+std::vector<std::uint32_t> part_offsets(const std::vector<std::unique_ptr<ObjectParts>>& parts) {
+  std::vector<std::uint32_t> offsets(parts.size() + 1, 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) offsets[k + 1] = offsets[k] + parts[k]->work.result.segment_count;
+  return offsets;
+}
+
+Labels dense_part_labels(const SceneWork& w, const std::vector<std::uint32_t>& offsets) {
+  Labels labels(w.objects.cloud->size(), 0);
+  for (std::size_t k = 0; k < w.parts.size(); ++k) {
+    const ObjectParts& object = *w.parts[k];
+    for (std::size_t j = 0; j < object.indices.size(); ++j) {
+      const std::uint32_t local = object.work.result.labels[j];
+      if (local != 0) labels[object.indices[j]] = offsets[k] + local;
+    }
+  }
+  return labels;
+}
+
+// Dense labels (1..n, 0 none) to ids (ids[label - 1]); the support's points get its id.
+Labels to_ids(const Labels& dense, const std::vector<std::uint32_t>& ids, const SegmentationWork& objects,
+              std::uint32_t support_id) {
+  Labels out(dense.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, dense.size()), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      if (dense[i] != 0) out[i] = ids[dense[i] - 1];
+      else if (objects.support && objects.support->on_plane[i]) out[i] = support_id;
+    }
+  });
+  return out;
+}
+
+void rename(SegmentGeometry& segment, const std::vector<std::uint32_t>& ids, std::uint32_t offset) {
+  segment.id = ids[offset + segment.id - 1];
+  for (Neighbour& n : segment.adjacent) n.id = ids[offset + n.id - 1];
+}
+
+}  // namespace
+
+SceneSegmenter::SceneSegmenter(const SceneConfig& config) : config_(config), objects_(config.objects) {
+  validate(config_);
+}
+
+SegmentTracker SceneSegmenter::new_tracker() const {
+  return SegmentTracker(config_.objects.support.enabled ? kSupportId + 1 : 1);
+}
+
+SceneSegmentation SceneSegmenter::segment(const PointCloud& cloud) const {
+  SceneWork work(cloud);
+  for (const StageInfo& stage : kStages) run_stage(stage.stage, work);
+  return std::move(work.result);
+}
+
+void SceneSegmenter::run_stage(Stage stage, SceneWork& w) const {
+  const auto start = std::chrono::steady_clock::now();
+  switch (stage) {
+    case Stage::parts: partition_objects(w); break;
+    case Stage::geometry: describe(w); break;
+    case Stage::ids: assign_ids(w); break;
+    default: objects_.run_stage(stage, w.objects); break;  // stages 0-8: one level of LCCP
+  }
+  w.result.times[stage] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Stage 9 (Fig. 5 C): every object segmented on its own with the part-level
+// config, in the binning its points had at the object level.
+void SceneSegmenter::partition_objects(SceneWork& w) const {
+  if (!config_.parts) return;
+  LccpConfig config = *config_.parts;
+  if (config.voxels.binning == Binning::automatic) config.voxels.binning = w.objects.grid.binning;
+  const LccpSegmenter segmenter(config);
+  std::vector<std::vector<std::uint32_t>> members =
+      points_by_object(w.objects.result.labels, w.objects.result.segment_count);
+  w.parts.resize(members.size());
+  tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t k) {
+    w.parts[k] = std::make_unique<ObjectParts>(gather(*w.objects.cloud, members[k]));
+    w.parts[k]->indices = std::move(members[k]);
+    for (std::size_t s = 0; s < kLccpStageCount; ++s) segmenter.run_stage(kStages[s].stage, w.parts[k]->work);
+  });
+}
+
+// Stage 10: the geometry of every object and of its parts, ids still dense labels.
+void SceneSegmenter::describe(SceneWork& w) const {
+  const std::optional<Plane> plane =
+      w.objects.support ? std::optional<Plane>(w.objects.support->plane) : std::nullopt;
+  std::vector<SegmentGeometry> objects = describe_segments(w.objects, plane);
+  w.segments.resize(objects.size());
+  tbb::parallel_for(std::size_t{0}, objects.size(), [&](std::size_t k) {
+    w.segments[k].object = std::move(objects[k]);
+    if (k < w.parts.size()) w.segments[k].parts = describe_segments(w.parts[k]->work, plane);
+  });
+}
+
+// Stage 11: ids matched to the previous frame's; labels and geometry renamed to them.
+void SceneSegmenter::assign_ids(SceneWork& w) const {
+  SegmentTracker fresh = new_tracker();
+  SegmentTracker& tracker = w.tracker ? *w.tracker : fresh;
+  const std::vector<std::uint32_t> offsets = part_offsets(w.parts);
+  const Labels parts = config_.parts ? dense_part_labels(w, offsets) : Labels{};
+  const SegmentationResult& level1 = w.objects.result;
+  TrackedIds ids = tracker.update({&w.objects.cloud->points, &level1.labels, level1.segment_count,
+                                   config_.parts ? &parts : nullptr, offsets.back()});
+  SceneSegmentation& r = w.result;
+  r.support_id = w.objects.support ? kSupportId : 0;
+  r.labels = to_ids(config_.parts ? parts : level1.labels, config_.parts ? ids.part_ids : ids.object_ids,
+                    w.objects, r.support_id);
+  if (config_.parts) r.objects = to_ids(level1.labels, ids.object_ids, w.objects, r.support_id);
+  for (std::size_t k = 0; k < w.segments.size(); ++k) {
+    rename(w.segments[k].object, ids.object_ids, 0);
+    for (SegmentGeometry& part : w.segments[k].parts) rename(part, ids.part_ids, offsets[k]);
+  }
+  r.segments = std::move(w.segments);
+  r.support_plane = w.objects.support ? std::optional<Plane>(w.objects.support->plane) : std::nullopt;
+  r.new_ids = std::move(ids.new_ids);
+  r.gone_ids = std::move(ids.gone_ids);
+  r.voxel_count = level1.voxel_count;
+  r.supervoxel_count = level1.supervoxel_count;
+  r.object_count = level1.segment_count;
+  r.segment_count = config_.parts ? offsets.back() : level1.segment_count;
+}
+
+}  // namespace lccp
