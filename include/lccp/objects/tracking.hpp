@@ -2,6 +2,7 @@
 // Stable ids across the frames of a stream: each frame's objects and parts are
 // matched to the previous frame's, so the same physical object keeps its id
 // while it stays in view.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,27 @@ struct TrackedIds {
   std::vector<std::uint32_t> gone_ids;    // ids of the previous frame not in this one, ascending
 };
 
+namespace detail {
+
+// A segment's occupied cell in one frame (src/objects/tracking.cpp): the cell's
+// key (grid, x, y, z) and the segment, objects 0..object_count-1 first, then
+// the parts.
+struct OccupiedCell {
+  std::uint64_t cell = 0;
+  std::uint32_t segment = 0;
+};
+
+// One frame's segments as the tracker keeps them.
+struct TrackedFrame {
+  std::array<std::vector<OccupiedCell>, 2> cells;  // per grid: ascending (cell, segment), no repeats
+  std::vector<std::uint32_t> sizes;                // per segment: how many cells it occupies, both grids
+  std::vector<std::uint32_t> ids;                  // per segment: its stable id
+  std::vector<std::uint32_t> owner_ids;            // per part: the stable id of its object
+  std::uint32_t object_count = 0;
+};
+
+}  // namespace detail
+
 class SegmentTracker {
  public:
   // Ids are handed out from first_id up, never reused; objects and parts share
@@ -34,8 +56,18 @@ class SegmentTracker {
   explicit SegmentTracker(std::uint32_t first_id = 1);
 
   // Matches this frame's segments to the previous frame's and returns their ids.
-  // Call once per frame, in frame order.
+  // Call once per frame, in frame order. Matching: by overlap (IoU) of the 1 cm
+  // cells each segment occupies, greedily, best first; a part inherits only from
+  // a part of the previous object its own object inherited from. New segments
+  // get new ids in dense order, objects first, then parts (a tracker's first
+  // frame: object k gets first_id + k - 1). Points whose object label is 0, or
+  // that are not finite, are ignored. Throws lccp::Error if the labels do not
+  // fit the frame (sizes, a label above its count) or the ids are used up.
   TrackedIds update(const FrameSegments& frame);
+
+ private:
+  std::uint32_t next_id_;
+  detail::TrackedFrame previous_;  // what the next frame is matched against
 };
 
 }  // namespace lccp
