@@ -73,17 +73,6 @@ std::vector<Labels> serial_stream_labels(const std::vector<const PointCloud*>& c
   return labels;
 }
 
-// True if a and b put the same points together (the same partition, any ids).
-bool same_partition(const Labels& a, const Labels& b) {
-  if (a.size() != b.size()) return false;
-  std::map<std::uint32_t, std::uint32_t> a_to_b, b_to_a;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a_to_b.emplace(a[i], b[i]).first->second != b[i]) return false;
-    if (b_to_a.emplace(b[i], a[i]).first->second != a[i]) return false;
-  }
-  return true;
-}
-
 // LccpSegmenter::segment of each scene, computed once.
 const Labels& reference_labels(const std::string& name) {
   static std::mutex mutex;
@@ -243,7 +232,7 @@ TEST_P(PipelineMatchesSegment, LabelsEqualSegmentAndFramesArriveInOrder) {
     EXPECT_TRUE(r.error.empty()) << r.error;
     EXPECT_EQ(r.frame.cloud.size(), scene(name).size());
     EXPECT_TRUE(r.segmentation.labels == serial[i]) << name;
-    EXPECT_TRUE(same_partition(r.segmentation.labels, reference_labels(name))) << name;
+    EXPECT_TRUE(test::same_partition(r.segmentation.labels, reference_labels(name))) << name;
     EXPECT_GT(r.segmentation.segment_count, 1u);
     EXPECT_GT(r.segmentation.times[Stage::voxelize], 0.0);
     EXPECT_GT(r.segmentation.times[Stage::growth], 0.0);

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <utility>
@@ -24,6 +25,18 @@
 #include "lccp/cloud.hpp"
 
 namespace lccp::test {
+
+// True if a and b put the same points together (the same partition, any ids):
+// a stream's stable ids against one cloud's labels 1..K.
+inline bool same_partition(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+  if (a.size() != b.size()) return false;
+  std::map<std::uint32_t, std::uint32_t> a_to_b, b_to_a;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a_to_b.emplace(a[i], b[i]).first->second != b[i]) return false;
+    if (b_to_a.emplace(b[i], a[i]).first->second != a[i]) return false;
+  }
+  return true;
+}
 
 inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
