@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "run_report.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/cloud_io.hpp"
 #include "lccp/metrics/scores.hpp"
@@ -73,24 +74,6 @@ std::string label_list(const std::vector<std::uint32_t>& labels, bool json) {
   std::string text = json ? "[" : "";
   for (std::size_t i = 0; i < labels.size(); ++i) text += (i ? ", " : "") + std::to_string(labels[i]);
   return json ? text + "]" : text;
-}
-
-// A file name as a JSON string (quotes, backslashes and control characters escaped).
-std::string json_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      quoted += '\\';
-      quoted += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(c));
-      quoted += escape;
-    } else {
-      quoted += c;
-    }
-  }
-  return quoted + "\"";
 }
 
 // The regions lost into the support, their number and labels: "objects lost
