@@ -33,21 +33,20 @@ struct Json {
   double number = 0;
   std::string text;                                   // a string's value, or a number's own digits
   std::vector<Json> items;                            // array elements
-  std::vector<std::pair<std::string, Json>> members;  // object members, in document order
+  // Object members in document order, names and values apart: a vector of an
+  // incomplete type is allowed (C++17), a vector of pair<string, Json> is not.
+  std::vector<std::string> names;
+  std::vector<Json> values;
 
   const Json& operator[](std::string_view key) const {
-    for (const auto& [name, value] : members)
-      if (name == key) return value;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == key) return values[i];
     ADD_FAILURE() << "no member " << key;
     static const Json missing;
     return missing;
   }
   const Json& operator[](std::size_t i) const { return items.at(i); }
-  std::vector<std::string> keys() const {
-    std::vector<std::string> out;
-    for (const auto& member : members) out.push_back(member.first);
-    return out;
-  }
+  std::vector<std::string> keys() const { return names; }
   bool is_null() const { return type == Type::null; }
 };
 
@@ -123,7 +122,8 @@ class JsonReader {
     do {
       std::string key = parse_string().text;
       expect(':');
-      value.members.emplace_back(std::move(key), parse_value());
+      value.names.push_back(std::move(key));
+      value.values.push_back(parse_value());
     } while (take(","));
     expect('}');
     return value;
