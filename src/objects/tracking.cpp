@@ -5,7 +5,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,6 +12,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "../core/cell_keys.hpp"
 #include "lccp/error.hpp"
 
 // Matching by overlap of occupied cells. Every segment of a frame is the set of
@@ -250,24 +250,6 @@ void record_owner(std::uint32_t segment, std::uint32_t object, const Layout& lay
   if (owners.empty() || owners.back() != owner) owners.push_back(owner);
 }
 
-// Stable LSD radix sort of keys by their bits below `bits`, serial (one result,
-// one thread). At most 2^32 keys.
-void radix_sort(std::vector<std::uint64_t>& keys, int bits) {
-  const int passes = std::max(1, (bits + 10) / 11), width = (bits + passes - 1) / passes;
-  const std::uint64_t mask = (std::uint64_t{1} << width) - 1;
-  std::vector<std::uint64_t> buffer(keys.size());
-  std::vector<std::uint32_t> start(mask + 1);
-  std::uint64_t *from = keys.data(), *to = buffer.data();
-  for (int shift = 0; shift < passes * width; shift += width) {
-    std::fill(start.begin(), start.end(), 0u);
-    for (std::size_t i = 0; i < keys.size(); ++i) ++start[(from[i] >> shift) & mask];
-    std::exclusive_scan(start.begin(), start.end(), start.begin(), 0u);
-    for (std::size_t i = 0; i < keys.size(); ++i) to[start[(from[i] >> shift) & mask]++] = from[i];
-    std::swap(from, to);
-  }
-  if (from != keys.data()) keys.swap(buffer);
-}
-
 // Drops most repeated keys before the sort: neighbouring pixels, in this row and
 // the rows above, mostly share their cells (about 25 pixels a cell at 1 m). A
 // direct-mapped cache of recent keys; what it misses, the unique after the sort
@@ -374,7 +356,8 @@ std::vector<Occupied> expand_objects(const std::vector<Occupied>& cells, const L
 // One grid's occupied cells from its frame keys, ascending (cell, segment).
 std::vector<Occupied> grid_cells(std::vector<std::uint64_t>& keys, const FramePacking& packing,
                                  const Layout& layout, const std::vector<std::uint32_t>& part_object) {
-  radix_sort(keys, packing.bits() - 1);  // one grid: its bit is the same in every key
+  // The core's stable radix sort, on the bits below the grid bit (the same in every key).
+  detail::radix_sort(keys, detail::PackedKeys{0, packing.bits() - 1});
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<Occupied> cells(keys.size());
   std::transform(keys.begin(), keys.end(), cells.begin(), [&](std::uint64_t k) { return packing.unpack(k); });
