@@ -67,7 +67,7 @@ struct Scene {
     return object;
   }
   FrameSegments frame(bool with_parts = false) const {
-    return {&points, &objects, object_count, with_parts ? &parts : nullptr, with_parts ? part_count : 0};
+    return {points, &objects, object_count, with_parts ? &parts : nullptr, with_parts ? part_count : 0};
   }
 };
 
@@ -328,7 +328,7 @@ struct VgaScene {
       parts[i] = dense[k] * kBands + band + 1;
     }
     const auto count = static_cast<std::uint32_t>(order.size());
-    return {&points, &objects, count, &parts, count * kBands};
+    return {points, &objects, count, &parts, count * kBands};
   }
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // Point cloud and label types shared by every stage.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,6 +17,28 @@ struct PointCloud {
   std::vector<Eigen::Vector3f> points;   // metres, sensor frame; NaN = no data
   std::vector<std::uint32_t> colors;     // packed 0x00RRGGBB; empty if the cloud has none
   std::vector<Eigen::Vector3f> normals;  // unit normals; empty if the cloud has none
+
+  std::size_t size() const { return points.size(); }
+  bool organized() const { return height > 1; }
+  bool has_colors() const { return !colors.empty(); }
+  bool has_normals() const { return !normals.empty(); }
+};
+
+// A read-only view of a cloud's arrays: a PointCloud's (it converts
+// implicitly), or a caller's own memory (e.g. a numpy array of float32 x, y, z
+// triples), read in place. What the segmenter reads; the arrays must outlive
+// the view and everything made from it (SegmentationWork).
+struct CloudView {
+  CloudView() = default;
+  CloudView(const PointCloud& cloud)  // NOLINT: implicit, a PointCloud is a cloud
+      : width(cloud.width), height(cloud.height), points(cloud.points), colors(cloud.colors),
+        normals(cloud.normals) {}
+
+  std::uint32_t width = 0;   // points per row
+  std::uint32_t height = 1;  // rows; > 1 means organized
+  std::span<const Eigen::Vector3f> points;   // as PointCloud::points
+  std::span<const std::uint32_t> colors;     // as PointCloud::colors: empty or one per point
+  std::span<const Eigen::Vector3f> normals;  // as PointCloud::normals: empty or one per point
 
   std::size_t size() const { return points.size(); }
   bool organized() const { return height > 1; }

@@ -26,9 +26,9 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
 // Stage 0 (Sec. III.C): the support plane's points are left out of the segmentation.
 void remove_support(SegmentationWork& w, const SupportPlaneConfig& config) {
   if (!config.enabled) return;
-  w.support = find_support_plane(*w.cloud, config);
+  w.support = find_support_plane(w.cloud, config);
   if (!w.support) return;
-  if (w.skip.empty()) w.skip.assign(w.cloud->size(), 0);
+  if (w.skip.empty()) w.skip.assign(w.cloud.size(), 0);
   detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) { w.skip[i] |= w.support->on_plane[i]; });
 }
 
@@ -46,9 +46,9 @@ void filter_and_label(SegmentationWork& w, std::uint32_t n_filter) {
 
 LccpSegmenter::LccpSegmenter(const LccpConfig& config) : config_(config) { validate(config_); }
 
-SegmentationResult LccpSegmenter::segment(const PointCloud& cloud) const { return std::move(run(cloud).result); }
+SegmentationResult LccpSegmenter::segment(const CloudView& cloud) const { return std::move(run(cloud).result); }
 
-SegmentationWork LccpSegmenter::run(const PointCloud& cloud) const {
+SegmentationWork LccpSegmenter::run(const CloudView& cloud) const {
   SegmentationWork work(cloud);
   for (std::size_t s = 0; s < kLccpStageCount; ++s) run_stage(kStages[s].stage, work);
   return work;
@@ -60,7 +60,7 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
   const SupervoxelConfig& sv = config_.supervoxels;
   switch (stage) {
     case Stage::support: remove_support(w, config_.support); break;
-    case Stage::voxelize: w.grid = voxelize(*w.cloud, config_.voxels, config_.limits, w.skip); break;
+    case Stage::voxelize: w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip); break;
     case Stage::normals: w.normals = estimate_voxel_normals(w.grid); break;
     case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;
     case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, sv, v); break;

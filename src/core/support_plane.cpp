@@ -79,7 +79,7 @@ void for_each_block(std::size_t n, Body&& body) {
 // intervals (fewer for a small cloud), the first finite point of each, in order;
 // an interval without one gives none. No pass over the whole cloud is needed, at
 // the price of fewer samples when most of it is NaN (10% finite: about 400).
-Samples score_samples(const PointCloud& cloud) {
+Samples score_samples(const CloudView& cloud) {
   const std::size_t n = std::min(cloud.size(), kScoreSamples);
   std::vector<std::size_t> chosen(n, cloud.size());
   detail::parallel_for_each_index(n, [&](std::size_t k) {
@@ -190,7 +190,7 @@ Moments sample_moments(const Samples& s, const Plane& plane, float distance) {
 
 // Moments of all the cloud's points within distance of the plane (a NaN or infinite
 // point fails the test): per fixed block in parallel, added in block order.
-Moments inlier_moments(const PointCloud& cloud, const Plane& plane, float distance) {
+Moments inlier_moments(const CloudView& cloud, const Plane& plane, float distance) {
   std::vector<Moments> blocks(block_count(cloud.size()), Moments::Zero());
   for_each_block(cloud.size(), [&](std::size_t b, std::size_t begin, std::size_t end) {
     MomentSums sums;
@@ -223,7 +223,7 @@ Plane refit(const Moments& inliers, const Plane& previous, const Criteria& c) {
 // Two least-squares rounds (fit, re-collect the inliers): the first over the
 // scoring samples, cheap, corrects the tilt of the three-point hypothesis, so that
 // the second collects the whole cloud's inliers around a nearly final plane.
-Plane refined(const PointCloud& cloud, const Samples& s, const Plane& hypothesis, const Criteria& c) {
+Plane refined(const CloudView& cloud, const Samples& s, const Plane& hypothesis, const Criteria& c) {
   const Plane coarse = refit(sample_moments(s, hypothesis, c.distance), hypothesis, c);
   return refit(inlier_moments(cloud, coarse, c.distance), coarse, c);
 }
@@ -240,7 +240,7 @@ struct Marking {
   std::uint64_t finite = 0;
 };
 
-Marking marked(const PointCloud& cloud, const Plane& plane, float distance) {
+Marking marked(const CloudView& cloud, const Plane& plane, float distance) {
   Marking m{SupportPlane{plane, std::vector<std::uint8_t>(cloud.size(), 0), 0}, 0};
   std::vector<std::uint64_t> inliers(block_count(cloud.size()), 0), finite(inliers.size(), 0);
   for_each_block(cloud.size(), [&](std::size_t b, std::size_t begin, std::size_t end) {
@@ -261,7 +261,7 @@ Marking marked(const PointCloud& cloud, const Plane& plane, float distance) {
 
 }  // namespace
 
-std::optional<SupportPlane> find_support_plane(const PointCloud& cloud, const SupportPlaneConfig& config) {
+std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config) {
   if (!(config.distance_m > 0.0f)) return std::nullopt;
   const Criteria criteria = criteria_of(config);
   const Samples samples = score_samples(cloud);

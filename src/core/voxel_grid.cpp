@@ -73,7 +73,7 @@ Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning) {
 
 // Cells of every point (kInvalidCell where non-finite or skipped) and their
 // bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest tells.
-CellBounds compute_cells(const PointCloud& cloud, const std::vector<std::uint8_t>& skip, float voxel_size,
+CellBounds compute_cells(const CloudView& cloud, const std::vector<std::uint8_t>& skip, float voxel_size,
                          Binning binning, float max_coordinate, std::vector<Cell>& cells) {
   cells.resize(cloud.size());
   const float inverse_size = 1.0f / voxel_size;
@@ -149,7 +149,7 @@ Eigen::Vector3f unpack_rgb(std::uint32_t rgb) {
 }
 
 // Centroid, colour and (if given) normal of every voxel, summed in point order.
-void compute_voxel_means(const PointCloud& cloud, VoxelGrid& grid) {
+void compute_voxel_means(const CloudView& cloud, VoxelGrid& grid) {
   const std::size_t n = grid.points.rows();
   grid.centroids.resize(n);
   grid.colors.assign(n, Eigen::Vector3f::Zero());
@@ -268,7 +268,7 @@ void check_limit(bool ok, const std::string& what, const char* key, double limit
 
 }  // namespace
 
-VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits,
+VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const LimitsConfig& limits,
                    const std::vector<std::uint8_t>& skip) {
   check_limit(cloud.size() <= limits.max_points, "the cloud has " + std::to_string(cloud.size()) + " points",
               "max_points", limits.max_points);

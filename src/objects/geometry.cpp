@@ -145,7 +145,7 @@ struct Moments {
 
 std::vector<Moments> segment_moments(const SegmentationWork& w, std::size_t K, const std::optional<PlaneFrame>& frame) {
   const auto fold = [&](Moments& m, std::size_t i, std::size_t) {
-    const Vec3 p = w.cloud->points[i].cast<double>();
+    const Vec3 p = w.cloud.points[i].cast<double>();
     m.n += 1;
     m.sum += p;
     m.outer.noalias() += p * p.transpose();
@@ -224,7 +224,7 @@ std::vector<Spread> segment_spreads(const SegmentationWork& w, const std::vector
   if (frame) octagons.reserve(moments.size());
   for (std::size_t k = 0; frame && k < moments.size(); ++k) octagons.emplace_back(moments[k].footprint);
   const auto fold = [&](Spread& s, std::size_t i, std::size_t k) {
-    const Vec3 p = w.cloud->points[i].cast<double>();
+    const Vec3 p = w.cloud.points[i].cast<double>();
     const Vec3 along = principal[k].axes.transpose() * (p - principal[k].centroid);
     s.lo = s.lo.cwiseMin(along), s.hi = s.hi.cwiseMax(along);
     if (!frame) return;
@@ -412,7 +412,7 @@ void add_adjacency(const SegmentationWork& w, std::vector<SegmentGeometry>& out)
 }
 
 void check_work(const SegmentationWork& w) {
-  const bool complete = w.cloud != nullptr && w.result.labels.size() == w.cloud->size() &&
+  const bool complete = w.result.labels.size() == w.cloud.size() &&
                         w.grid.points.rows() == w.grid.size() && w.normals.size() == w.grid.size() &&
                         w.segment_of_supervoxel.size() == w.supervoxels.size();
   if (!complete) throw Error("describe_segments: the segmentation work is incomplete (run every stage first)");

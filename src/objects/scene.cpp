@@ -18,7 +18,7 @@ std::vector<std::vector<std::uint32_t>> points_by_object(const Labels& objects, 
   return members;
 }
 
-PointCloud gather(const PointCloud& cloud, const std::vector<std::uint32_t>& indices) {
+PointCloud gather(const CloudView& cloud, const std::vector<std::uint32_t>& indices) {
   PointCloud part;
   part.width = static_cast<std::uint32_t>(indices.size());
   part.points.reserve(indices.size());
@@ -40,7 +40,7 @@ std::vector<std::uint32_t> part_offsets(const std::vector<std::unique_ptr<Object
 }
 
 Labels dense_part_labels(const SceneWork& w, const std::vector<std::uint32_t>& offsets) {
-  Labels labels(w.objects.cloud->size(), 0);
+  Labels labels(w.objects.cloud.size(), 0);
   for (std::size_t k = 0; k < w.parts.size(); ++k) {
     const ObjectParts& object = *w.parts[k];
     for (std::size_t j = 0; j < object.indices.size(); ++j) {
@@ -79,7 +79,7 @@ SegmentTracker SceneSegmenter::new_tracker() const {
   return SegmentTracker(config_.objects.support.enabled ? kSupportId + 1 : 1);
 }
 
-SceneSegmentation SceneSegmenter::segment(const PointCloud& cloud) const {
+SceneSegmentation SceneSegmenter::segment(const CloudView& cloud) const {
   SceneWork work(cloud);
   for (const StageInfo& stage : kStages) run_stage(stage.stage, work);
   return std::move(work.result);
@@ -107,7 +107,7 @@ void SceneSegmenter::partition_objects(SceneWork& w) const {
       points_by_object(w.objects.result.labels, w.objects.result.segment_count);
   w.parts.resize(members.size());
   tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t k) {
-    w.parts[k] = std::make_unique<ObjectParts>(gather(*w.objects.cloud, members[k]));
+    w.parts[k] = std::make_unique<ObjectParts>(gather(w.objects.cloud, members[k]));
     w.parts[k]->indices = std::move(members[k]);
     for (std::size_t s = 0; s < kLccpStageCount; ++s) segmenter.run_stage(kStages[s].stage, w.parts[k]->work);
   });
@@ -132,7 +132,7 @@ void SceneSegmenter::assign_ids(SceneWork& w) const {
   const std::vector<std::uint32_t> offsets = part_offsets(w.parts);
   const Labels parts = config_.parts ? dense_part_labels(w, offsets) : Labels{};
   const SegmentationResult& level1 = w.objects.result;
-  TrackedIds ids = tracker.update({&w.objects.cloud->points, &level1.labels, level1.segment_count,
+  TrackedIds ids = tracker.update({w.objects.cloud.points, &level1.labels, level1.segment_count,
                                    config_.parts ? &parts : nullptr, offsets.back()});
   SceneSegmentation& r = w.result;
   r.support_id = w.objects.support ? kSupportId : 0;

@@ -184,7 +184,7 @@ class RunScanner {
     std::copy_n(half_.begin() + 3 * last_, 3, half_.begin());  // the point before the chunk
     segments_[0] = segments_[last_];
     objects_ = frame_.objects->data() + begin - 1;  // indexed as half_ and segments_
-    half_cells((*frame_.points)[begin].data(), 3 * count, half_.data() + 3);
+    half_cells(frame_.points[begin].data(), 3 * count, half_.data() + 3);
     if (point_segments(objects_ + 1, parts_ ? parts_ + begin : nullptr, count, layout_,
                        segments_.data() + 1))
       throw Error("segment tracking: a label above its count");
@@ -307,7 +307,7 @@ BlockKeys block_keys(const FrameSegments& frame, const Layout& layout, const Fra
 bool frame_keys(const FrameSegments& frame, const Layout& layout, const FramePacking& packing,
                 std::array<std::vector<std::uint64_t>, 2>& keys, std::vector<std::uint32_t>& part_object) {
   constexpr std::size_t kBlock = std::size_t{1} << 15;
-  const std::size_t n = frame.points->size(), blocks = (n + kBlock - 1) / kBlock;
+  const std::size_t n = frame.points.size(), blocks = (n + kBlock - 1) / kBlock;
   std::vector<BlockKeys> out(blocks);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t k) {
     out[k] = block_keys(frame, layout, packing, k * kBlock, std::min(n, (k + 1) * kBlock));
@@ -379,7 +379,7 @@ std::array<std::vector<Occupied>, 2> occupied_general(const FrameSegments& frame
     cells[1].push_back({b, s});
     if (s >= layout.objects) part_object[s - layout.objects] = object;
   };
-  for_each_run(frame, layout, absolute, 0, frame.points->size(), emit, [] {});
+  for_each_run(frame, layout, absolute, 0, frame.points.size(), emit, [] {});
   const auto same = [](const Occupied& a, const Occupied& b) { return a.cell == b.cell && a.segment == b.segment; };
   for (auto& grid : cells) {
     std::sort(grid.begin(), grid.end(), cell_then_segment);
@@ -392,9 +392,9 @@ std::array<std::vector<Occupied>, 2> occupied_general(const FrameSegments& frame
 // The first labelled point's cell (grid 0), or nothing.
 std::optional<Cell> first_cell(const FrameSegments& frame) {
   std::array<int, 3> h;
-  for (std::size_t i = 0; i < frame.points->size(); ++i) {
+  for (std::size_t i = 0; i < frame.points.size(); ++i) {
     if ((*frame.objects)[i] == 0) continue;
-    half_cells((*frame.points)[i].data(), 3, h.data());
+    half_cells(frame.points[i].data(), 3, h.data());
     if (h[0] != kFar && h[1] != kFar && h[2] != kFar) return Cell(h[0] >> 1, h[1] >> 1, h[2] >> 1);
   }
   return std::nullopt;
@@ -404,7 +404,7 @@ std::optional<Cell> first_cell(const FrameSegments& frame) {
 // part_object: each part's object (kNone: the part has no point).
 std::array<std::vector<Occupied>, 2> occupied_cells(const FrameSegments& frame, const Layout& layout,
                                                     std::vector<std::uint32_t>& part_object) {
-  if (frame.points == nullptr || frame.objects == nullptr) return {};
+  if (frame.points.empty() || frame.objects == nullptr) return {};
   const std::optional<Cell> first = first_cell(frame);
   if (!first) return {};
   const FramePacking packing(*first - (1 << (kFrameAxisBits - 1)), std::bit_width(std::max(layout.size(), 1u) - 1));
@@ -431,9 +431,9 @@ void check_labels(const Labels* labels, std::size_t point_count, const char* wha
 }
 
 void check_frame(const FrameSegments& frame) {
-  if (frame.object_count > 0 && (frame.points == nullptr || frame.objects == nullptr))
+  if (frame.object_count > 0 && (frame.points.empty() || frame.objects == nullptr))
     throw Error("segment tracking: object_count > 0 without points or object labels");
-  const std::size_t n = frame.points ? frame.points->size() : 0;
+  const std::size_t n = frame.points.size();
   check_labels(frame.objects, n, "object");
   check_labels(frame.parts, n, "part");
   if (frame.parts != nullptr && frame.objects == nullptr)

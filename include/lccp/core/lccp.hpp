@@ -22,11 +22,11 @@ struct SegmentationResult {
 
 // One cloud on its way through the stages: each stage reads what the earlier
 // ones left and adds its own result. The streaming pipeline hands it from node
-// to node; `cloud` must outlive it.
+// to node; the arrays `cloud` views must outlive it.
 struct SegmentationWork {
-  explicit SegmentationWork(const PointCloud& points) : cloud(&points) {}
+  explicit SegmentationWork(CloudView points) : cloud(points) {}
 
-  const PointCloud* cloud;
+  CloudView cloud;
   std::vector<std::uint8_t> skip;                      // per point, 1: left out (empty: none); set by the caller
   std::optional<SupportPlane> support;                 // support (its points join `skip`)
   VoxelGrid grid;                                      // voxelize
@@ -47,11 +47,11 @@ class LccpSegmenter {
   // Labels every finite point (but those on the support plane, if the config
   // removes it: see SegmentationWork::support); deterministic for a given cloud and config,
   // whatever the thread count. Throws lccp::Error for a cloud without finite points.
-  SegmentationResult segment(const PointCloud& cloud) const;
+  SegmentationResult segment(const CloudView& cloud) const;
 
   // The same, keeping every stage's output (grid, normals, supervoxels, graph)
   // for what is computed from it (per-segment geometry).
-  SegmentationWork run(const PointCloud& cloud) const;
+  SegmentationWork run(const CloudView& cloud) const;
 
   // Runs one of stages 0-8 on `work` and adds its time to work.result.times
   // (the later stages are the scene's: lccp/objects/scene.hpp). Stages run in

@@ -31,6 +31,6 @@ struct SupportPlane {
 // max_tilt_deg of the up direction when one is given), refined by least squares
 // over its inliers; empty when it holds fewer than min_inlier_share of the finite
 // points. Deterministic for a given cloud and config, whatever the thread count.
-std::optional<SupportPlane> find_support_plane(const PointCloud& cloud, const SupportPlaneConfig& config);
+std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config);
 
 }  // namespace lccp

@@ -44,7 +44,7 @@ struct VoxelGrid {
 // when it exceeds a limit (more points or voxels than allowed, a finite point
 // beyond max_coordinate_m). Points i with skip[i] != 0 are left out (no voxel),
 // as if they were not finite; an empty `skip` leaves none out.
-VoxelGrid voxelize(const PointCloud& cloud, const VoxelConfig& config, const LimitsConfig& limits = {},
+VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const LimitsConfig& limits = {},
                    const std::vector<std::uint8_t>& skip = {});
 
 }  // namespace lccp

@@ -51,7 +51,7 @@ struct ObjectParts {
 
 // One frame on its way through the stages of kStages.
 struct SceneWork {
-  explicit SceneWork(const PointCloud& cloud) : objects(cloud) {}
+  explicit SceneWork(const CloudView& cloud) : objects(cloud) {}
 
   SegmentationWork objects;                          // stages 0-8
   std::vector<std::unique_ptr<ObjectParts>> parts;   // stage 9: one per object
@@ -66,7 +66,7 @@ class SceneSegmenter {
   explicit SceneSegmenter(const SceneConfig& config);
 
   // Segments one cloud; ids in label order. Deterministic, whatever the thread count.
-  SceneSegmentation segment(const PointCloud& cloud) const;
+  SceneSegmentation segment(const CloudView& cloud) const;
 
   // Runs one stage on `work` and adds its time to work.result.times, in kStages
   // order. Stage 11 needs work.tracker.

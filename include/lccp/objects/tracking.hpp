@@ -14,10 +14,10 @@ namespace lccp {
 
 // One frame's segments at both levels, as dense per-point labels (0 = none).
 struct FrameSegments {
-  const std::vector<Eigen::Vector3f>* points = nullptr;  // metres
-  const Labels* objects = nullptr;                       // per point: object 1..object_count
+  std::span<const Eigen::Vector3f> points;  // metres
+  const Labels* objects = nullptr;  // per point: object 1..object_count
   std::uint32_t object_count = 0;
-  const Labels* parts = nullptr;                          // per point: part 1..part_count; null: no part level
+  const Labels* parts = nullptr;  // per point: part 1..part_count; null: no part level
   std::uint32_t part_count = 0;
 };
 
