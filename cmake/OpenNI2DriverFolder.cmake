@@ -20,8 +20,10 @@ foreach(driver OniFile PS1080)
   endif()
 endforeach()
 
-# Makes `target` (an executable in `folder_from_target`, relative to the build root)
-# load libOpenNI2 and its drivers from the private folder.
+# Makes `target` (an executable or library whose file is `relative_path_to_lib` away
+# from the folder: lib, ../lib, or .) load libOpenNI2 and its drivers from the private
+# folder, in the build tree and, installed, from <prefix>/lib (relative, so a moved
+# prefix keeps working).
 function(lccp_use_openni2_folder target relative_path_to_lib)
   set_target_properties(${target} PROPERTIES BUILD_RPATH "$ORIGIN/${relative_path_to_lib}")
   target_link_options(${target} PRIVATE -Wl,--disable-new-dtags)

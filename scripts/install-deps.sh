@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libtbb-dev libpcl-dev libopenni2-dev
   libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest
   clang libclang-rt-14-dev
 )
 

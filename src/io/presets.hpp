@@ -3,13 +3,13 @@
 #include <string_view>
 #include <vector>
 
-namespace lccp::app {
+namespace lccp::detail {
 
 struct Preset {
-  std::string_view name;  // the file's stem: p1, p2, objects
+  std::string_view name;  // the file's stem: p1, p2, objects, robot
   std::string_view yaml;  // the file's text
 };
 
 const std::vector<Preset>& presets();
 
-}  // namespace lccp::app
+}  // namespace lccp::detail

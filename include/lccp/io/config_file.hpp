@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "lccp/config.hpp"
 
@@ -19,6 +20,15 @@ SceneConfig load_config(const std::filesystem::path& path);
 // The same on YAML text in memory (for fuzzing and tests); `name` stands for
 // the file in error messages.
 SceneConfig parse_config(std::string_view yaml_text, std::string_view name);
+
+// The presets built into the library from the project's config/*.yaml (p1,
+// p2, objects, robot), sorted by name.
+std::vector<std::string> preset_names();
+
+// A preset by name (no folder, no suffix: "p2") or else a YAML file by path
+// ("config/p2.yaml", "my.yaml": anything with a folder or a suffix), read with
+// load_config. Throws lccp::Error for a name that is neither, listing the presets.
+SceneConfig load_preset_or_file(const std::string& name_or_path);
 
 // Applies one `key=value` override, e.g. "beta_thresh_deg=20", or
 // "parts.beta_thresh_deg=20" for the second level (which must exist).
