@@ -3,9 +3,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "lccp/io/cloud_io.hpp"
-#include "lccp/io/config_file.hpp"
-#include "lccp/objects/scene.hpp"
+#include "lccp/lccp_stream.hpp"
 
 int main(int argc, char** argv) try {
   if (argc < 2) {

@@ -60,12 +60,16 @@ struct SceneWork {
   SceneSegmentation result;                          // stage 11 (labels, ids); times from every stage
 };
 
+// Immutable after construction: segment() and run_stage() may run on several
+// threads at once, each on its own cloud or work (the pipeline does).
 class SceneSegmenter {
  public:
   // Throws lccp::Error if the config is out of range.
   explicit SceneSegmenter(const SceneConfig& config);
 
-  // Segments one cloud; ids in label order. Deterministic, whatever the thread count.
+  // Segments one cloud (read in place, not copied); ids in label order.
+  // Deterministic, whatever the thread count. Throws lccp::Error for a cloud
+  // without finite points or beyond the config's limits.
   SceneSegmentation segment(const CloudView& cloud) const;
 
   // Runs one stage on `work` and adds its time to work.result.times, in kStages
