@@ -27,6 +27,24 @@ namespace py = pybind11;
 // Shapes of numpy arrays: the leading shape of a cloud is (N,) or (H, W).
 using Shape = std::vector<py::ssize_t>;
 
+// --- argument and result types for signatures ---------------------------------------
+// Any Python object, checked by the module's own code (so that a bad value raises
+// its ValueError naming the argument, not pybind11's TypeError), shown in
+// signatures (help()) under the name its Tag's handle_type_name gives (below).
+template <class Tag>
+class Typed : public py::object {
+ public:
+  using py::object::object;
+  Typed(py::object value) : py::object(std::move(value)) {}  // NOLINT: results convert implicitly
+  static bool check_(py::handle) { return true; }
+};
+using ArrayArg = Typed<struct ArrayTag>;                  // numpy.ndarray
+using OptionalArrayArg = Typed<struct OptionalArrayTag>;  // numpy.ndarray or None
+using ConfigArg = Typed<struct ConfigTag>;                // preset, path, dict or Config
+using PathArg = Typed<struct PathTag>;                    // str or os.PathLike
+using IgnoreArg = Typed<struct IgnoreTag>;                // range, (first, last) or None
+using SegmentResult = Typed<struct SegmentResultTag>;     // labels, or (labels, objects)
+
 // --- numpy -> library (arrays.cpp) ----------------------------------------------
 // A cloud's arrays, held alive as long as the CloudView made from them is used.
 // Points and normals are float32 C-contiguous (..., 3) arrays: the caller's
@@ -104,3 +122,18 @@ void bind_evaluate(py::module_& module);
 void bind_streams(py::module_& module);
 
 }  // namespace lccp::python
+
+namespace pybind11::detail {
+#define LCCP_PYTHON_TYPE_NAME(type, text)                    \
+  template <>                                                \
+  struct handle_type_name<lccp::python::type> {              \
+    static constexpr auto name = const_name(text);           \
+  }
+LCCP_PYTHON_TYPE_NAME(ArrayArg, "numpy.ndarray");
+LCCP_PYTHON_TYPE_NAME(OptionalArrayArg, "Optional[numpy.ndarray]");
+LCCP_PYTHON_TYPE_NAME(ConfigArg, "Union[str, os.PathLike, dict, Config]");
+LCCP_PYTHON_TYPE_NAME(PathArg, "Union[str, os.PathLike]");
+LCCP_PYTHON_TYPE_NAME(IgnoreArg, "Optional[Union[range, Tuple[int, int]]]");
+LCCP_PYTHON_TYPE_NAME(SegmentResult, "Union[numpy.ndarray, Tuple[numpy.ndarray, list]]");
+#undef LCCP_PYTHON_TYPE_NAME
+}  // namespace pybind11::detail

@@ -58,7 +58,7 @@ Live take a Config wherever they take a preset name, a YAML path or a dict.
                              "1 (segments) or 2 (objects, then parts within each object).");
 
   module.def(
-      "load_config", [](py::handle name_or_path) { return config_from(name_or_path); }, py::arg("name_or_path"),
+      "load_config", [](ConfigArg name_or_path) { return config_from(name_or_path); }, py::arg("name_or_path"),
       R"doc(
 A preset by name ("p1", "p2", "objects", "robot": see presets()) or a YAML file
 by path (str or os.PathLike; anything with a folder or a suffix), or a dict of

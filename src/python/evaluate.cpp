@@ -56,7 +56,7 @@ py::dict scores_dict(const SegmentationScores& s) {
   return d;
 }
 
-py::dict evaluate(py::handle predicted, py::handle ground_truth, py::handle ignore, py::handle points,
+py::dict evaluate(ArrayArg predicted, ArrayArg ground_truth, IgnoreArg ignore, OptionalArrayArg points,
                   bool object_level) {
   const Labels pred = labels_from(predicted, "pred");
   const Labels truth = labels_from(ground_truth, "gt");

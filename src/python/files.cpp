@@ -18,7 +18,7 @@ py::array rgb_array(const std::vector<std::uint32_t>& colors, const Shape& shape
   return rgb;
 }
 
-py::dict read_cloud_dict(py::handle path) {
+py::dict read_cloud_dict(PathArg path) {
   const std::string file = path_string(path);
   LabelledCloud read;
   {
@@ -36,7 +36,7 @@ py::dict read_cloud_dict(py::handle path) {
 }
 
 // The label image of `labels` (H, W), or of labels in the layout of `points`.
-void write_png(py::handle path, py::handle labels, py::handle points, py::handle objects) {
+void write_png(PathArg path, ArrayArg labels, OptionalArrayArg points, OptionalArrayArg objects) {
   const std::string file = path_string(path);
   Labels label_values = labels_from(labels, "labels");
   const py::array label_array = py::array::ensure(labels);

@@ -29,8 +29,8 @@ Raises ValueError for a bad array, config or cloud (with the library's
 one-line message). The GIL is released while the cloud is segmented.
 )doc";
 
-py::object segment(py::handle points, py::handle colors, py::handle normals, py::handle config,
-                   std::optional<int> threads, bool with_segments) {
+SegmentResult segment(ArrayArg points, OptionalArrayArg colors, OptionalArrayArg normals, ConfigArg config,
+                      std::optional<int> threads, bool with_segments) {
   const CloudArrays arrays = cloud_arrays(points, colors, normals);
   const SceneSegmenter segmenter(config_from(config));  // validates the config
   threads = thread_count(threads);

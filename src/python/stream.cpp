@@ -268,7 +268,7 @@ path: the recording (str or os.PathLike). config: as segment()'s.
 inflight: frames segmented at once. threads: None for every core, or a
 count. frames: stop after this many frames (None: all).
 )doc") + kStreamMethodsDoc).c_str());
-  replay.def(py::init([](py::handle path, py::handle config, unsigned inflight, std::optional<int> threads,
+  replay.def(py::init([](PathArg path, ConfigArg config, unsigned inflight, std::optional<int> threads,
                          std::optional<std::uint64_t> frames) {
                const SceneConfig scene_config = config_from(config);
                threads = thread_count(threads);
@@ -290,11 +290,11 @@ built-in virtual sensor). config: as segment()'s. inflight: frames segmented
 at once. threads: None for every core, or a count. frames, seconds: stop
 after this many frames or seconds (None: until close() or Ctrl-C).
 )doc") + kStreamMethodsDoc).c_str());
-  live.def(py::init([](py::handle uri, py::handle config, unsigned inflight, std::optional<int> threads,
+  live.def(py::init([](const std::string& uri, ConfigArg config, unsigned inflight, std::optional<int> threads,
                        std::optional<std::uint64_t> frames, std::optional<double> seconds) {
              const SceneConfig scene_config = config_from(config);
              threads = thread_count(threads);
-             auto source = open(path_string(uri), SourceLimits{frames, seconds});
+             auto source = open(uri, SourceLimits{frames, seconds});
              return std::make_unique<Live>(std::move(source), scene_config, inflight, threads);
            }),
            py::arg("uri"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),

@@ -23,6 +23,7 @@ def test_labels_equal_the_command_line(tmp_path, source_dir, lccp_binary, mosd_c
 def test_organized_cloud_keeps_its_shape(mosd_cloud, mosd_labels):
     assert mosd_cloud["points"].shape == (480, 640, 3)
     assert mosd_labels.shape == (480, 640)
+    assert not mosd_labels.flags.owndata  # a view of the library's label vector, not a copy
     flat = lccp_stream.segment(mosd_cloud["points"].reshape(-1, 3), colors=mosd_cloud["colors"].reshape(-1, 3))
     assert flat.shape == (480 * 640,) and flat.dtype == np.uint32
     finite = np.isfinite(mosd_cloud["points"]).all(axis=-1).reshape(-1)
