@@ -37,6 +37,7 @@ Subcommand add_eval_command(CLI::App& cli);
 Subcommand add_replay_command(CLI::App& cli);
 Subcommand add_live_command(CLI::App& cli);
 Subcommand add_record_command(CLI::App& cli);
+Subcommand add_record_bag_command(CLI::App& cli);
 Subcommand add_truth_command(CLI::App& cli);
 Subcommand add_profile_command(CLI::App& cli);
 Subcommand add_devices_command(CLI::App& cli);

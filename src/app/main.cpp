@@ -60,9 +60,11 @@ int main(int argc, char** argv) {
   cli.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
   cli.fallthrough();  // --threads and --log-level may follow the subcommand (set before adding them)
-  const std::vector<Subcommand> commands{add_segment_command(cli), add_eval_command(cli),   add_replay_command(cli),
-                                         add_live_command(cli),    add_record_command(cli), add_truth_command(cli),
-                                         add_profile_command(cli), add_devices_command(cli)};
+  const std::vector<Subcommand> commands{add_segment_command(cli),    add_eval_command(cli),
+                                         add_replay_command(cli),     add_live_command(cli),
+                                         add_record_command(cli),     add_record_bag_command(cli),
+                                         add_truth_command(cli),      add_profile_command(cli),
+                                         add_devices_command(cli)};
   plain_help(cli);
   try {
     cli.parse(argc, argv);

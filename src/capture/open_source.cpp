@@ -5,6 +5,7 @@
 
 #include "lccp/capture/cloud_files.hpp"
 #include "lccp/capture/openni_sources.hpp"
+#include "lccp/capture/rosbag.hpp"
 #include "lccp/error.hpp"
 
 namespace lccp {
@@ -14,6 +15,7 @@ namespace fs = std::filesystem;
 
 bool is_uri(const std::string& spec) { return spec.find("://") != std::string::npos; }
 bool has_extension(const std::string& spec, const char* extension) { return fs::path(spec).extension() == extension; }
+bool is_recording(const std::string& spec) { return has_extension(spec, ".oni") || has_extension(spec, ".bag"); }
 
 // A source that ends after N frames or S seconds. A frame that arrives after
 // the S seconds is not passed on.
@@ -55,7 +57,7 @@ class LimitedSource final : public FrameSource {
 void check_alone(const std::vector<std::string>& specs) {
   for (const std::string& spec : specs) {
     if (is_uri(spec)) throw Error("a device URI (" + spec + ") must be the only source");
-    if (has_extension(spec, ".oni")) throw Error("an .oni recording (" + spec + ") must be the only source");
+    if (is_recording(spec)) throw Error("a recording (" + spec + ") must be the only source");
   }
 }
 
@@ -67,15 +69,15 @@ SourceKind source_kind(const std::vector<std::string>& specs) {
     check_alone(specs);
   } else if (is_uri(specs.front())) {
     return SourceKind::device;
-  } else if (has_extension(specs.front(), ".oni")) {
+  } else if (is_recording(specs.front())) {
     return SourceKind::recording;
   }
   for (const std::string& spec : specs) {
     std::error_code error;
     if (!fs::exists(spec, error)) throw Error("cannot open " + spec + ": no such file");
     if (!fs::is_directory(spec, error) && !has_extension(spec, ".pcd") && !has_extension(spec, ".ply")) {
-      throw Error(spec + " is not a source: expected an .oni recording, a .pcd or .ply cloud, a folder of clouds or a "
-                         "device URI");
+      throw Error(spec + " is not a source: expected an .oni or .bag recording, a .pcd or .ply cloud, a folder of "
+                         "clouds or a device URI");
     }
   }
   return SourceKind::cloud_files;
@@ -99,7 +101,8 @@ std::unique_ptr<FrameSource> limit_source(std::unique_ptr<FrameSource> source, c
 
 std::unique_ptr<FrameSource> open_source(const std::vector<std::string>& specs, const SourceOptions& options) {
   const SourceKind kind = source_kind(specs);
-  if (options.realtime && kind != SourceKind::recording) {
+  const bool bag = kind == SourceKind::recording && has_extension(specs.front(), ".bag");
+  if (options.realtime && (kind != SourceKind::recording || bag)) {
     throw Error("--realtime needs an .oni recording: a device is always real time, cloud files have no timestamps");
   }
   std::unique_ptr<FrameSource> source;
@@ -107,6 +110,8 @@ std::unique_ptr<FrameSource> open_source(const std::vector<std::string>& specs, 
     LiveOptions live;
     live.uri = specs.front();
     source = open_device(live);
+  } else if (bag) {
+    source = open_rosbag(specs.front());
   } else if (kind == SourceKind::recording) {
     ReplayOptions replay;
     replay.realtime = options.realtime;

@@ -13,7 +13,8 @@
 namespace lccp {
 
 enum class SourceKind {
-  recording,    // one .oni file: every frame in order, or paced by its timestamps (realtime)
+  recording,    // one .oni file (every frame in order, or paced by its timestamps: realtime) or one
+                // .bag file (lccp/capture/rosbag.hpp: every message of one topic in bag order)
   device,       // one OpenNI2 device URI (anything with "://", e.g. virtual://synthetic): live
   cloud_files,  // .pcd / .ply files and folders of them, in order
 };
@@ -25,7 +26,7 @@ struct SourceLimits {
 
 struct SourceOptions {
   SourceLimits limits;
-  bool realtime = false;  // recordings: pace by timestamps (a device always is)
+  bool realtime = false;  // .oni recordings: pace by timestamps (a device always is)
 };
 
 // What the arguments name. Throws lccp::Error (one line) for no argument, a
@@ -38,7 +39,8 @@ const char* to_string(SourceKind kind);
 
 // Opens the source the arguments name. Throws lccp::Error (one line, naming
 // the argument) for a missing path, a folder without clouds, an unreadable
-// recording, a device that does not answer, or --realtime with cloud files.
+// recording, a device that does not answer, or --realtime with anything but an
+// .oni recording. A .bag is read with open_rosbag's default topic.
 std::unique_ptr<FrameSource> open_source(const std::vector<std::string>& specs, const SourceOptions& options = {});
 
 // `source` ending after limits.max_frames frames or limits.max_seconds seconds

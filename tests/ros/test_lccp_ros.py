@@ -1,0 +1,257 @@
+#!/usr/bin/python3
+"""Integration test of the lccp_ros node (issue 13, must-show 1).
+
+Starts its own ROS master on a free port (ROS_MASTER_URI on 127.0.0.1, a temporary
+ROS_HOME and ROS_LOG_DIR), starts lccp_ros (~config p1), plays a bag made from the
+bundled recording (lccp record-bag) frame by frame, waiting for each frame's results
+before sending the next (so nothing is dropped), and checks that every input frame
+yields a ~labels message with the input's stamp whose labels equal `lccp replay` of
+the same bag, and a ~segments (JSON) and ~markers message; then that /diagnostics
+was published and that an unknown private parameter makes the node exit non-zero
+naming it. Stops everything it started, also on failure.
+
+  test_lccp_ros.py --lccp build/lccp --lccp-ros build/lccp_ros --recording recordings/mosd_scenes.oni
+"""
+import argparse
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import numpy as np
+import rosbag
+import rospy
+from diagnostic_msgs.msg import DiagnosticArray
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2
+from std_msgs.msg import String
+from visualization_msgs.msg import Marker, MarkerArray
+
+RESULT_TIMEOUT_S = 120  # one frame through the node on a loaded 2-core machine
+START_TIMEOUT_S = 60
+
+
+def free_port():
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_for(condition, timeout_s, what):
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if condition():
+            return
+        time.sleep(0.05)
+    raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
+
+
+def read_pcd_labels(path):
+    """The `label` field of an uncompressed binary PCD (lccp replay --pcd-data binary)."""
+    with open(path, "rb") as f:
+        header = {}
+        while True:
+            line = f.readline().decode("ascii").strip()
+            if line.startswith("#"):
+                continue
+            key, _, value = line.partition(" ")
+            header[key] = value.split()
+            if key == "DATA":
+                break
+        assert header["DATA"] == ["binary"], header["DATA"]
+        kinds = {("F", "4"): "<f4", ("U", "4"): "<u4", ("I", "4"): "<i4", ("U", "1"): "u1"}
+        dtype = np.dtype([(n, kinds[(t, s)]) for n, t, s in zip(header["FIELDS"], header["TYPE"], header["SIZE"])])
+        points = np.frombuffer(f.read(), dtype=dtype, count=int(header["POINTS"][0]))
+    return points["label"]
+
+
+def replay_labels(lccp, bag, out_dir):
+    """Labels per frame from `lccp replay BAG`, in frame order."""
+    subprocess.run([lccp, "replay", bag, "-o", out_dir, "--save", "pcd", "--pcd-data", "binary", "--quiet",
+                    "--config", "p1"], check=True, timeout=600)
+    names = sorted(n for n in os.listdir(out_dir) if n.endswith(".pcd"))
+    return [read_pcd_labels(os.path.join(out_dir, n)) for n in names]
+
+
+class Processes:
+    """Everything the test starts, stopped in reverse order (SIGINT, then SIGKILL)."""
+
+    def __init__(self):
+        self.started = []
+
+    def start(self, command, env, log_path):
+        log = open(log_path, "wb")
+        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        self.started.append((process, log))
+        return process
+
+    def stop_all(self):
+        for process, log in reversed(self.started):
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGINT)
+                try:
+                    process.wait(timeout=30)
+                except subprocess.TimeoutExpired:
+                    os.killpg(process.pid, signal.SIGKILL)
+                    process.wait()
+            log.close()
+
+
+class Results:
+    """What the node publishes, by input stamp."""
+
+    def __init__(self, namespace):
+        self.lock = threading.Lock()
+        self.labels, self.segments, self.markers, self.diagnostics = {}, {}, {}, []
+        self.subscribers = [
+            rospy.Subscriber(namespace + "/labels", PointCloud2, self.keep(self.labels), queue_size=100),
+            rospy.Subscriber(namespace + "/segments", String, self.keep_segments, queue_size=100),
+            rospy.Subscriber(namespace + "/markers", MarkerArray, self.keep_markers, queue_size=100),
+            rospy.Subscriber("/diagnostics", DiagnosticArray, self.keep_diagnostics, queue_size=100)]
+
+    def connected(self):
+        return all(s.get_num_connections() > 0 for s in self.subscribers)
+
+    def keep(self, table):
+        def callback(message):
+            with self.lock:
+                table[message.header.stamp.to_nsec()] = message
+        return callback
+
+    def keep_segments(self, message):
+        document = json.loads(message.data)
+        with self.lock:
+            self.segments[document["timestamp_us"]] = document
+
+    def keep_markers(self, message):
+        with self.lock:
+            self.markers[message.markers[0].header.stamp.to_nsec()] = message
+
+    def keep_diagnostics(self, message):
+        with self.lock:
+            self.diagnostics.append(message)
+
+    def complete(self, stamp_ns):
+        with self.lock:
+            return stamp_ns in self.labels and stamp_ns // 1000 in self.segments and stamp_ns in self.markers
+
+
+def labels_of(cloud):
+    """The `label` and `object` fields of a ~labels message, per point."""
+    offsets = {f.name: f.offset for f in cloud.fields}
+    assert [f.name for f in cloud.fields] == ["x", "y", "z", "label", "object"], cloud.fields
+    points = np.frombuffer(cloud.data, dtype=np.uint8).reshape(-1, cloud.point_step)
+    label = points[:, offsets["label"]:offsets["label"] + 4].copy().view("<u4").ravel()
+    return label
+
+
+def play_and_check(bag_path, expected, results, publishers):
+    image_pub, info_pub = publishers
+    messages = {}
+    with rosbag.Bag(bag_path) as bag:
+        for topic, message, _ in bag.read_messages():
+            messages.setdefault(message.header.stamp.to_nsec(), {})[topic] = message
+    stamps = sorted(messages)
+    assert len(stamps) == len(expected), (len(stamps), len(expected))
+    info_pub.publish(messages[stamps[0]]["/depth/camera_info"])
+    time.sleep(1.0)  # the node keeps the latest camera_info: let the first one arrive before any image
+    for index, stamp in enumerate(stamps):
+        info_pub.publish(messages[stamp]["/depth/camera_info"])
+        image_pub.publish(messages[stamp]["/depth/image_raw"])
+        wait_for(lambda: results.complete(stamp), RESULT_TIMEOUT_S, f"the results of frame {index}")
+        check_frame(index, stamp, expected[index], messages[stamp]["/depth/image_raw"], results)
+        print(f"frame {index}: {int(expected[index].max())} labels, as lccp replay", flush=True)
+    return stamps
+
+
+def check_frame(index, stamp, expected_labels, image, results):
+    with results.lock:
+        cloud, document, markers = results.labels[stamp], results.segments[stamp // 1000], results.markers[stamp]
+    assert cloud.header.frame_id == image.header.frame_id, cloud.header.frame_id
+    assert (cloud.width, cloud.height) == (image.width, image.height), (cloud.width, cloud.height)
+    labels = labels_of(cloud)
+    assert np.array_equal(labels, expected_labels), \
+        f"frame {index}: {int(np.sum(labels != expected_labels))} labels differ from lccp replay"
+    assert document["frame"] == index, document["frame"]
+    assert markers.markers[0].action == Marker.DELETEALL
+    boxes = sum(1 + len(o["parts"]) for o in document["objects"])
+    assert len(markers.markers) == 1 + 2 * boxes, (len(markers.markers), boxes)
+
+
+def check_diagnostics(results, frames):
+    """/diagnostics once a second: counts and per-stage p50; soon it counts every frame."""
+    def latest():
+        with results.lock:
+            found = [s for d in results.diagnostics for s in d.status if "segmentation" in s.name]
+        return {v.key: v.value for v in found[-1].values} if found else {}
+    wait_for(lambda: latest().get("frames_received") == str(frames), 10, f"/diagnostics counting {frames} frames")
+    values = latest()
+    assert values["frames_completed"] == str(frames) and values["frames_dropped"] == "0", values
+    assert "end_to_end_p50_ms" in values and "voxelize_p50_ms" in values, values
+
+
+def check_unknown_parameter(args, env, tmp):
+    """An unknown private parameter: a ROS_ERROR naming it, exit status 1."""
+    result = subprocess.run([args.lccp_ros, "__name:=lccp_bad", "_bogus_key:=3", "_config:=p1"], env=env,
+                            capture_output=True, text=True, timeout=START_TIMEOUT_S)
+    assert result.returncode == 1, (result.returncode, result.stdout, result.stderr)
+    assert "unknown private parameters ~bogus_key" in result.stderr, result.stderr
+
+
+def run(args, tmp, processes):
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOSTNAME="127.0.0.1",
+               ROS_HOME=os.path.join(tmp, "ros_home"), ROS_LOG_DIR=os.path.join(tmp, "ros_log"))
+    os.environ.update(env)
+    bag = os.path.join(tmp, "mosd_scenes.bag")
+    subprocess.run([args.lccp, "record-bag", args.recording, "-o", bag, "--frames", str(args.frames)], check=True)
+    expected = replay_labels(args.lccp, bag, os.path.join(tmp, "replay"))
+    processes.start(["rosmaster", "--core", "-p", str(port)], env, os.path.join(tmp, "master.log"))
+    import rosgraph
+    wait_for(lambda: rosgraph.Master("/lccp_test", master_uri=env["ROS_MASTER_URI"]).is_online(),
+             START_TIMEOUT_S, "the ROS master")
+    check_unknown_parameter(args, env, tmp)
+    node = processes.start([args.lccp_ros, "_config:=p1", "_inflight:=2", "_threads:=2"], env,
+                           os.path.join(tmp, "lccp_ros.log"))
+    rospy.init_node("lccp_ros_test", anonymous=True, disable_signals=True)
+    results = Results("/lccp_ros")
+    image_pub = rospy.Publisher("/depth/image_raw", Image, queue_size=10)
+    info_pub = rospy.Publisher("/depth/camera_info", CameraInfo, queue_size=10)
+    wait_for(lambda: node.poll() is None and image_pub.get_num_connections() > 0 and
+             info_pub.get_num_connections() > 0, START_TIMEOUT_S, "lccp_ros to subscribe")
+    wait_for(lambda: node.poll() is None and results.connected(), START_TIMEOUT_S, "lccp_ros's publishers")
+    stamps = play_and_check(bag, expected, results, (image_pub, info_pub))
+    check_diagnostics(results, len(stamps))
+    assert node.poll() is None, "lccp_ros exited"
+    print(f"OK: {len(stamps)} frames through lccp_ros, labels as lccp replay")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--lccp", required=True)
+    parser.add_argument("--lccp-ros", required=True)
+    parser.add_argument("--recording", required=True)
+    parser.add_argument("--frames", type=int, default=62)
+    args = parser.parse_args()
+    processes = Processes()
+    with tempfile.TemporaryDirectory(prefix="lccp_ros_test_") as tmp:
+        try:
+            run(args, tmp, processes)
+        except BaseException:
+            for log in ("lccp_ros.log", "master.log"):
+                path = os.path.join(tmp, log)
+                if os.path.exists(path):
+                    print(f"--- {log} ---\n" + open(path, errors="replace").read()[-4000:], file=sys.stderr)
+            raise
+        finally:
+            if rospy.core.is_initialized():
+                rospy.signal_shutdown("test done")
+            processes.stop_all()
+
+
+if __name__ == "__main__":
+    main()
