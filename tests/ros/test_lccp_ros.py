@@ -7,7 +7,8 @@ bundled recording (lccp record-bag) frame by frame, waiting for each frame's res
 before sending the next (so nothing is dropped), and checks that every input frame
 yields a ~labels message with the input's stamp whose labels equal `lccp replay` of
 the same bag, and a ~segments (JSON) and ~markers message; then that /diagnostics
-was published and that an unknown private parameter makes the node exit non-zero
+counts them, that the first frames sent as PointCloud2 (~input points) give the
+same labels, and that an unknown private parameter makes the node exit non-zero
 naming it. Stops everything it started, also on failure.
 
   test_lccp_ros.py --lccp build/lccp --lccp-ros build/lccp_ros --recording recordings/mosd_scenes.oni
@@ -27,12 +28,13 @@ import numpy as np
 import rosbag
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
-from sensor_msgs.msg import CameraInfo, Image, PointCloud2
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 from std_msgs.msg import String
 from visualization_msgs.msg import Marker, MarkerArray
 
 RESULT_TIMEOUT_S = 120  # one frame through the node on a loaded 2-core machine
 START_TIMEOUT_S = 60
+POINTS_FRAMES = 3  # frames also sent as PointCloud2 (~input points)
 
 
 def free_port():
@@ -50,8 +52,8 @@ def wait_for(condition, timeout_s, what):
     raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
 
 
-def read_pcd_labels(path):
-    """The `label` field of an uncompressed binary PCD (lccp replay --pcd-data binary)."""
+def read_pcd(path):
+    """The points of an uncompressed binary PCD (lccp replay --pcd-data binary) and its size."""
     with open(path, "rb") as f:
         header = {}
         while True:
@@ -66,15 +68,15 @@ def read_pcd_labels(path):
         kinds = {("F", "4"): "<f4", ("U", "4"): "<u4", ("I", "4"): "<i4", ("U", "1"): "u1"}
         dtype = np.dtype([(n, kinds[(t, s)]) for n, t, s in zip(header["FIELDS"], header["TYPE"], header["SIZE"])])
         points = np.frombuffer(f.read(), dtype=dtype, count=int(header["POINTS"][0]))
-    return points["label"]
+    return points, int(header["WIDTH"][0]), int(header["HEIGHT"][0])
 
 
-def replay_labels(lccp, bag, out_dir):
-    """Labels per frame from `lccp replay BAG`, in frame order."""
+def replay_frames(lccp, bag, out_dir):
+    """(points, width, height) per frame from `lccp replay BAG`, in frame order: x y z label."""
     subprocess.run([lccp, "replay", bag, "-o", out_dir, "--save", "pcd", "--pcd-data", "binary", "--quiet",
                     "--config", "p1"], check=True, timeout=600)
     names = sorted(n for n in os.listdir(out_dir) if n.endswith(".pcd"))
-    return [read_pcd_labels(os.path.join(out_dir, n)) for n in names]
+    return [read_pcd(os.path.join(out_dir, n)) for n in names]
 
 
 class Processes:
@@ -209,7 +211,8 @@ def run(args, tmp, processes):
     os.environ.update(env)
     bag = os.path.join(tmp, "mosd_scenes.bag")
     subprocess.run([args.lccp, "record-bag", args.recording, "-o", bag, "--frames", str(args.frames)], check=True)
-    expected = replay_labels(args.lccp, bag, os.path.join(tmp, "replay"))
+    replayed = replay_frames(args.lccp, bag, os.path.join(tmp, "replay"))
+    expected = [points["label"] for points, _, _ in replayed]
     processes.start(["rosmaster", "--core", "-p", str(port)], env, os.path.join(tmp, "master.log"))
     import rosgraph
     wait_for(lambda: rosgraph.Master("/lccp_test", master_uri=env["ROS_MASTER_URI"]).is_online(),
@@ -227,7 +230,38 @@ def run(args, tmp, processes):
     stamps = play_and_check(bag, expected, results, (image_pub, info_pub))
     check_diagnostics(results, len(stamps))
     assert node.poll() is None, "lccp_ros exited"
-    print(f"OK: {len(stamps)} frames through lccp_ros, labels as lccp replay")
+    check_points_input(args, env, tmp, processes, replayed[:POINTS_FRAMES])
+    print(f"OK: {len(stamps)} depth frames and {POINTS_FRAMES} clouds through lccp_ros, labels as lccp replay")
+
+
+def cloud_message(points, width, height, stamp):
+    """An organized PointCloud2 with the float32 x y z of a replayed frame."""
+    fields = [PointField(name=n, offset=4 * i, datatype=PointField.FLOAT32, count=1) for i, n in enumerate("xyz")]
+    cloud = PointCloud2(height=height, width=width, fields=fields, is_bigendian=False, point_step=12,
+                        row_step=12 * width, is_dense=False)
+    cloud.header.stamp = stamp
+    cloud.header.frame_id = "cloud_frame"
+    cloud.data = np.stack([points["x"], points["y"], points["z"]], axis=1).astype("<f4").tobytes()
+    return cloud
+
+
+def check_points_input(args, env, tmp, processes, frames):
+    """~input points: the replayed frames' own points as PointCloud2 give the same labels."""
+    node = processes.start([args.lccp_ros, "__name:=lccp_points", "_input:=points", "_config:=p1"], env,
+                           os.path.join(tmp, "lccp_points.log"))
+    labels = {}
+    subscriber = rospy.Subscriber("/lccp_points/labels", PointCloud2,
+                                  lambda m: labels.__setitem__(m.header.stamp.to_nsec(), m), queue_size=10)
+    publisher = rospy.Publisher("/points", PointCloud2, queue_size=10)
+    wait_for(lambda: node.poll() is None and publisher.get_num_connections() > 0 and
+             subscriber.get_num_connections() > 0, START_TIMEOUT_S, "lccp_points")
+    for index, (points, width, height) in enumerate(frames):
+        stamp = rospy.Time(100 + index, 123456789)
+        publisher.publish(cloud_message(points, width, height, stamp))
+        wait_for(lambda: stamp.to_nsec() in labels, RESULT_TIMEOUT_S, f"the labels of cloud {index}")
+        message = labels[stamp.to_nsec()]
+        assert (message.width, message.height, message.header.frame_id) == (width, height, "cloud_frame")
+        assert np.array_equal(labels_of(message), points["label"]), f"cloud {index}: labels differ from lccp replay"
 
 
 def main():
