@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <set>
 
@@ -245,7 +246,9 @@ LccpRosNode::~LccpRosNode() {
   points_subscriber_.shutdown();
   diagnostics_timer_.stop();
   const std::string counts = segmentation_->stop();
-  ROS_INFO("lccp_ros: %s", counts.c_str());
+  // On stdout, not through rosconsole: after ros::shutdown (Ctrl-C) it prints nothing.
+  std::printf("%s: %s\n", ros::this_node::getName().c_str(), counts.c_str());
+  std::fflush(stdout);
 }
 
 void LccpRosNode::on_camera_info(const sensor_msgs::CameraInfo::ConstPtr& info) {

@@ -190,9 +190,9 @@ def check_diagnostics(results, frames):
         with results.lock:
             found = [s for d in results.diagnostics for s in d.status if "segmentation" in s.name]
         return {v.key: v.value for v in found[-1].values} if found else {}
-    wait_for(lambda: latest().get("frames_received") == str(frames), 10, f"/diagnostics counting {frames} frames")
+    wait_for(lambda: latest().get("frames_completed") == str(frames), 10, f"/diagnostics counting {frames} frames")
     values = latest()
-    assert values["frames_completed"] == str(frames) and values["frames_dropped"] == "0", values
+    assert values["frames_received"] == str(frames) and values["frames_dropped"] == "0", values
     assert "end_to_end_p50_ms" in values and "voxelize_p50_ms" in values, values
 
 
@@ -231,7 +231,16 @@ def run(args, tmp, processes):
     check_diagnostics(results, len(stamps))
     assert node.poll() is None, "lccp_ros exited"
     check_points_input(args, env, tmp, processes, replayed[:POINTS_FRAMES])
+    check_clean_stop(node, os.path.join(tmp, "lccp_ros.log"), len(stamps))
     print(f"OK: {len(stamps)} depth frames and {POINTS_FRAMES} clouds through lccp_ros, labels as lccp replay")
+
+
+def check_clean_stop(node, log_path, frames):
+    """Ctrl-C (SIGINT): the node finishes, logs the pipeline's counts and exits 0."""
+    os.killpg(node.pid, signal.SIGINT)
+    assert node.wait(timeout=60) == 0, f"lccp_ros exited with {node.returncode} after SIGINT"
+    log = open(log_path, errors="replace").read()
+    assert f"frames {frames} received + 0 gaps = {frames} completed + 0 failed + 0 dropped" in log, log[-2000:]
 
 
 def cloud_message(points, width, height, stamp):
