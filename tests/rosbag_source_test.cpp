@@ -107,6 +107,7 @@ TEST(RosbagSource, RecordingIsAtomicAndNeedsDepth) {
   test::expect_lccp_error([&] { record_bag(*open_source({kRecording.string()}), dir / "none.bag", stopped.get_token()); },
                           {"no frames", "none.bag"});
   EXPECT_TRUE(fs::is_empty(dir)) << "a failed recording left a file";
+  fs::remove_all(dir);
 }
 
 // tests/ros/make_test_bag.py (the project's python3, Debian's, with python3-rosbag)
@@ -119,6 +120,7 @@ class RosbagKinds : public ::testing::Test {
     const std::string command = std::string(LCCP_PYTHON) + " " + script.string() + " " + bag_.string();
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
   }
+  void TearDown() override { fs::remove_all(bag_.parent_path()); }
   fs::path bag_;
 };
 
