@@ -8,6 +8,10 @@ packages=(
   libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
+  libroscpp-dev libnodeletlib-dev libnodeletlib-tools pluginlib-dev librosbag-dev
+  libsensor-msgs-dev libvisualization-msgs-dev libdiagnostic-msgs-dev libstd-msgs-dev
+  ros-core python3-rospy python3-rosbag python3-rostest
+  python3-sensor-msgs python3-visualization-msgs python3-diagnostic-msgs
   clang libclang-rt-14-dev
 )
 
