@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Python overhead (issue 12): lccp_stream.segment on an organized mOSD cloud
 passed as a numpy array against the same call in C++ (perf/segment_call, the
-same shared library), median over CALLS calls each, in alternating rounds so
-that both see the same machine state.
+same shared library), median over CALLS calls each, in alternating rounds (C++
+first in odd rounds, Python first in even ones) so that both see the same
+machine state.
 
   PYTHONPATH=build11/python python3 perf/python_overhead.py build11/perf/segment_call \
       tests/data/mosd_test2.pcd [--calls 20 --rounds 3 --threads 2 --config p1]
@@ -15,8 +16,8 @@ import time
 import lccp_stream
 
 
-def cpp_times(program, cloud, config, calls, threads):
-    out = subprocess.run([program, cloud, config, str(calls), str(threads)], check=True,
+def cpp_times(program, cloud, config, calls, threads, keep):
+    out = subprocess.run([program, cloud, config, str(calls), str(threads), str(int(keep))], check=True,
                          capture_output=True, text=True).stdout
     return [float(line) for line in out.split()]
 
@@ -39,15 +40,23 @@ def main():
     parser.add_argument("--calls", type=int, default=20)
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--keep-freed-memory", action="store_true",
+                        help="both sides call keep_freed_memory_for_next_frames first, as the lccp tool does")
     args = parser.parse_args()
+    if args.keep_freed_memory:
+        lccp_stream.keep_freed_memory_for_next_frames()
     cloud = lccp_stream.read_cloud(args.cloud)
     points, colors = cloud["points"], cloud["colors"]
     print(f"cloud {args.cloud}: points {points.shape} {points.dtype}, config {args.config}, "
-          f"threads {args.threads}, {args.calls} calls per round")
+          f"threads {args.threads}, {args.calls} calls per round, keep freed memory: {args.keep_freed_memory}")
     cpp, python = [], []
     for r in range(args.rounds):
-        c = cpp_times(args.program, args.cloud, args.config, args.calls, args.threads)
-        p = python_times(points, colors, args.config, args.calls, args.threads)
+        if r % 2 == 0:
+            c = cpp_times(args.program, args.cloud, args.config, args.calls, args.threads, args.keep_freed_memory)
+            p = python_times(points, colors, args.config, args.calls, args.threads)
+        else:
+            p = python_times(points, colors, args.config, args.calls, args.threads)
+            c = cpp_times(args.program, args.cloud, args.config, args.calls, args.threads, args.keep_freed_memory)
         cpp += c
         python += p
         print(f"round {r + 1}: C++ median {statistics.median(c):.2f} ms, "

@@ -2,8 +2,17 @@
 // recordings and sensors, through the same library calls as the lccp tool.
 #include "bindings.hpp"
 #include "lccp/error.hpp"
+#include "lccp/process.hpp"
 
 namespace {
+
+constexpr const char* kKeepMemoryDoc = R"doc(
+Keeps freed heap memory in the process (glibc: no mmap for large blocks, no
+trimming), so each call reuses the pages of the previous one instead of
+faulting in fresh zeroed pages; the lccp tool does this at start. A setting
+of the whole process (the interpreter), so it is never made on import: call
+it once if this process segments many clouds.
+)doc";
 
 constexpr const char* kModuleDoc = R"doc(
 LCCP Stream: object and part segmentation of point clouds with Locally
@@ -16,6 +25,7 @@ Live(uri, ...)              iterate over the segmented frames of a sensor
 evaluate(pred, gt, ...)     the paper's Appendix B scores
 load_config(), presets()    configurations (Config)
 read_cloud(), write_label_png()   .pcd/.ply clouds and label images
+keep_freed_memory_for_next_frames()   opt-in process setting for long runs
 
 Errors the caller can cause (a bad file, parameter or array) raise ValueError
 with a one-line message; a stream that fails raises RuntimeError.
@@ -40,4 +50,5 @@ PYBIND11_MODULE(lccp_stream, module) {
   lccp::python::bind_files(module);
   lccp::python::bind_evaluate(module);
   lccp::python::bind_streams(module);
+  module.def("keep_freed_memory_for_next_frames", &lccp::keep_freed_memory_for_next_frames, kKeepMemoryDoc);
 }
