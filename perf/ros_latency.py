@@ -15,51 +15,21 @@ frames published, labelled and dropped (published - labelled, and the node's own
 import argparse
 import json
 import os
-import signal
-import socket
 import subprocess
+import sys
 import tempfile
 import threading
 import time
 
 import numpy as np
 import rosbag
-import rosgraph
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2
 
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_for(condition, timeout_s, what):
-    deadline = time.monotonic() + timeout_s
-    while not condition():
-        if time.monotonic() > deadline:
-            raise RuntimeError(f"timed out waiting for {what}")
-        time.sleep(0.05)
-
-
-def start(command, env, log_path, started):
-    process = subprocess.Popen(command, env=env, stdout=open(log_path, "wb"), stderr=subprocess.STDOUT,
-                               start_new_session=True)
-    started.append(process)
-    return process
-
-
-def stop(started):
-    for process in reversed(started):
-        if process.poll() is None:
-            os.killpg(process.pid, signal.SIGINT)
-            try:
-                process.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                os.killpg(process.pid, signal.SIGKILL)
-                process.wait()
+# The private master and process handling the integration test uses (tests/ros).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "ros"))
+from ros_harness import Processes, start_master, wait_for  # noqa: E402
 
 
 def load_frames(lccp, recording, tmp):
@@ -107,16 +77,11 @@ def publish_at_rate(frames, rate_hz, seconds, image_pub, info_pub):
     return published
 
 
-def measure(args, tmp, started):
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOSTNAME="127.0.0.1",
-               ROS_HOME=os.path.join(tmp, "ros_home"), ROS_LOG_DIR=os.path.join(tmp, "ros_log"))
-    os.environ.update(env)
+def measure(args, tmp, processes):
     frames = load_frames(args.lccp, args.recording, tmp)
-    start(["rosmaster", "--core", "-p", str(port)], env, os.path.join(tmp, "master.log"), started)
-    wait_for(lambda: rosgraph.Master("/lccp_perf").is_online(), 60, "the ROS master")
-    node = start([args.lccp_ros, f"_config:={args.config}", f"_threads:={args.threads}",
-                  f"_inflight:={args.inflight}"], env, os.path.join(tmp, "lccp_ros.log"), started)
+    env = start_master(processes, tmp, 60)
+    node = processes.start([args.lccp_ros, f"_config:={args.config}", f"_threads:={args.threads}",
+                            f"_inflight:={args.inflight}"], env, os.path.join(tmp, "lccp_ros.log"))
     rospy.init_node("lccp_ros_latency", anonymous=True, disable_signals=True)
     receiver = Receiver()
     image_pub = rospy.Publisher("/depth/image_raw", Image, queue_size=2)
@@ -148,14 +113,14 @@ def main():
     parser.add_argument("--inflight", type=int, default=2)
     parser.add_argument("--json", help="also write the figures to this file")
     args = parser.parse_args()
-    started = []
+    processes = Processes()
     with tempfile.TemporaryDirectory(prefix="lccp_ros_latency_") as tmp:
         try:
-            result = measure(args, tmp, started)
+            result = measure(args, tmp, processes)
         finally:
             if rospy.core.is_initialized():
                 rospy.signal_shutdown("done")
-            stop(started)
+            processes.stop_all()
     print(f"ROS latency (stamp -> ~labels received), {args.config}, {args.threads} threads, K={args.inflight}, "
           f"{args.rate:g} Hz for {args.seconds:g} s: p50 {result['p50_ms']:.1f} ms, p99 {result['p99_ms']:.1f} ms, "
           f"max {result['max_ms']:.1f} ms; {result['published']} published, {result['labelled']} labelled, "

@@ -17,7 +17,6 @@ import argparse
 import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -32,24 +31,11 @@ from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 from std_msgs.msg import String
 from visualization_msgs.msg import Marker, MarkerArray
 
+from ros_harness import Processes, start_master, wait_for
+
 RESULT_TIMEOUT_S = 120  # one frame through the node on a loaded 2-core machine
 START_TIMEOUT_S = 60
 POINTS_FRAMES = 3  # frames also sent as PointCloud2 (~input points)
-
-
-def free_port():
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_for(condition, timeout_s, what):
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if condition():
-            return
-        time.sleep(0.05)
-    raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
 
 
 def read_pcd(path):
@@ -77,30 +63,6 @@ def replay_frames(lccp, bag, out_dir):
                     "--config", "p1"], check=True, timeout=600)
     names = sorted(n for n in os.listdir(out_dir) if n.endswith(".pcd"))
     return [read_pcd(os.path.join(out_dir, n)) for n in names]
-
-
-class Processes:
-    """Everything the test starts, stopped in reverse order (SIGINT, then SIGKILL)."""
-
-    def __init__(self):
-        self.started = []
-
-    def start(self, command, env, log_path):
-        log = open(log_path, "wb")
-        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
-        self.started.append((process, log))
-        return process
-
-    def stop_all(self):
-        for process, log in reversed(self.started):
-            if process.poll() is None:
-                os.killpg(process.pid, signal.SIGINT)
-                try:
-                    process.wait(timeout=30)
-                except subprocess.TimeoutExpired:
-                    os.killpg(process.pid, signal.SIGKILL)
-                    process.wait()
-            log.close()
 
 
 class Results:
@@ -205,18 +167,11 @@ def check_unknown_parameter(args, env, tmp):
 
 
 def run(args, tmp, processes):
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOSTNAME="127.0.0.1",
-               ROS_HOME=os.path.join(tmp, "ros_home"), ROS_LOG_DIR=os.path.join(tmp, "ros_log"))
-    os.environ.update(env)
     bag = os.path.join(tmp, "mosd_scenes.bag")
     subprocess.run([args.lccp, "record-bag", args.recording, "-o", bag, "--frames", str(args.frames)], check=True)
     replayed = replay_frames(args.lccp, bag, os.path.join(tmp, "replay"))
     expected = [points["label"] for points, _, _ in replayed]
-    processes.start(["rosmaster", "--core", "-p", str(port)], env, os.path.join(tmp, "master.log"))
-    import rosgraph
-    wait_for(lambda: rosgraph.Master("/lccp_test", master_uri=env["ROS_MASTER_URI"]).is_online(),
-             START_TIMEOUT_S, "the ROS master")
+    env = start_master(processes, tmp, START_TIMEOUT_S)
     check_unknown_parameter(args, env, tmp)
     node = processes.start([args.lccp_ros, "_config:=p1", "_inflight:=2", "_threads:=2"], env,
                            os.path.join(tmp, "lccp_ros.log"))
