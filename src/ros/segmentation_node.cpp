@@ -12,8 +12,7 @@
 #include <stop_token>
 #include <thread>
 
-#include <tbb/global_control.h>
-#include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 #include "frame_conversion.hpp"
 #include "lccp/error.hpp"
@@ -155,8 +154,7 @@ struct SegmentationNode::Impl {
   };
 
   Impl(const NodeSettings& settings, Publish publish_to)
-      : threads(tbb::global_control::max_allowed_parallelism,
-                settings.threads > 0 ? settings.threads : tbb::info::default_concurrency()),
+      : arena(settings.threads > 0 ? static_cast<int>(settings.threads) : tbb::task_arena::automatic),
         segmenter(resolve_config(settings)),
         pipeline(segmenter, PipelineConfig{settings.frames_in_flight}),
         publish(std::move(publish_to)) {}
@@ -189,7 +187,7 @@ struct SegmentationNode::Impl {
     publish(std::move(out));
   }
 
-  tbb::global_control threads;
+  tbb::task_arena arena;  // the pipeline's threads: a nodelet shares its process, so no global setting
   SceneSegmenter segmenter;
   Pipeline pipeline;
   Publish publish;
@@ -208,8 +206,10 @@ SegmentationNode::SegmentationNode(const NodeSettings& settings, Publish publish
     : impl_(std::make_unique<Impl>(settings, std::move(publish))) {
   Impl& impl = *impl_;
   impl.thread = std::thread([&impl] {
-    impl.outcome = impl.pipeline.run(impl.queue, [&impl](FrameResult& result) { impl.deliver(result); },
-                                     impl.stop.get_token());
+    impl.arena.execute([&impl] {
+      impl.outcome = impl.pipeline.run(impl.queue, [&impl](FrameResult& result) { impl.deliver(result); },
+                                       impl.stop.get_token());
+    });
   });
 }
 

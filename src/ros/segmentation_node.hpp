@@ -19,7 +19,7 @@ struct NodeSettings {
   std::string config = "p1";               // preset name or YAML path (load_preset_or_file)
   std::vector<std::string> settings;       // "key=value" overrides, "parts.key=value" for the second level
   unsigned frames_in_flight = 2;           // K
-  unsigned threads = 0;                    // TBB worker threads for the process; 0: all cores
+  unsigned threads = 0;                    // threads of the node's task arena; 0: all cores
 };
 
 // An oriented box (the segment's obb) for the markers.
