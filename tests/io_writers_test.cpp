@@ -610,5 +610,15 @@ TEST(IoWriterPng, ObjectColoursInOverlayAndWithoutObjects) {
   EXPECT_EQ(part_color(9, 0), (std::array<std::uint8_t, 3>{0, 0, 0}));
 }
 
+TEST(IoWriterPng, LabelRgbIsThePixelsOfTheLabelImage) {
+  const PointCloud cloud = organized_cloud(12, 9, false);
+  const Labels labels = labels_for(cloud), objects = objects_for(labels);
+  EXPECT_EQ(label_rgb(labels), decode_png(encode_label_png(cloud, labels)).pixels);
+  EXPECT_EQ(label_rgb(labels, &objects),
+            decode_png(encode_label_png(cloud, labels, LabelImageStyle::labels, &objects)).pixels);
+  const Labels short_objects(5, 1);
+  expect_lccp_error([&] { label_rgb(labels, &short_objects); }, {"labels and objects differ in number"});
+}
+
 }  // namespace
 }  // namespace lccp

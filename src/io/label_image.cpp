@@ -128,12 +128,6 @@ std::vector<Rgb> overlay_pixels(const PointCloud& cloud, const Labels& labels, c
   return pixels;
 }
 
-std::vector<Rgb> label_pixels(const Labels& labels, const Labels* objects) {
-  std::vector<Rgb> pixels(labels.size());
-  for (std::size_t i = 0; i < labels.size(); ++i) pixels[i] = point_color(labels, objects, i);
-  return pixels;
-}
-
 // An id's hue in [0, 6) (sextants of the colour wheel): the id times 2^32 / phi
 // modulo 2^32 (Fibonacci hashing, Knuth TAOCP vol. 3, 6.4; exact in
 // integers), so neighbouring ids land about 137 degrees apart.
@@ -159,7 +153,14 @@ std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels
   io_detail::check_labelled_cloud(cloud, labels, objects);
   return encode_png(cloud.width, cloud.height,
                     style == LabelImageStyle::overlay ? overlay_pixels(cloud, labels, objects)
-                                                      : label_pixels(labels, objects));
+                                                      : label_rgb(labels, objects));
+}
+
+std::vector<std::array<std::uint8_t, 3>> label_rgb(const Labels& labels, const Labels* objects) {
+  if (objects && objects->size() != labels.size()) throw Error("label colours: labels and objects differ in number");
+  std::vector<Rgb> pixels(labels.size());
+  for (std::size_t i = 0; i < labels.size(); ++i) pixels[i] = point_color(labels, objects, i);
+  return pixels;
 }
 
 // Hue from id_hue; saturation cycles over three levels; value is fixed and

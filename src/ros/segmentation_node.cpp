@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <cstring>
 #include <deque>
 #include <map>
 #include <mutex>
@@ -83,15 +84,15 @@ void fill_points(const FrameResult& result, FrameOutput& out) {
   out.width = cloud.width;
   out.height = cloud.height;
   out.xyz.resize(cloud.size() * 3);
-  out.label_rgb.resize(cloud.size() * 3);
   out.labels = scene.labels;
   out.objects = scene.objects.empty() ? scene.labels : scene.objects;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (int axis = 0; axis < 3; ++axis) out.xyz[3 * i + axis] = cloud.points[i][axis];
-    const std::array<std::uint8_t, 3> rgb =
-        scene.objects.empty() ? label_color(out.labels[i]) : part_color(out.objects[i], out.labels[i]);
-    std::copy(rgb.begin(), rgb.end(), out.label_rgb.begin() + static_cast<std::ptrdiff_t>(3 * i));
   }
+  const auto rgb = label_rgb(scene.labels, scene.objects.empty() ? nullptr : &scene.objects);
+  static_assert(sizeof(rgb[0]) == 3);
+  out.label_rgb.resize(3 * rgb.size());
+  std::memcpy(out.label_rgb.data(), rgb.data(), out.label_rgb.size());
 }
 
 FrameOutput output_of(const FrameResult& result) {

@@ -102,6 +102,11 @@ std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels
                                            LabelImageStyle style = LabelImageStyle::labels,
                                            const Labels* objects = nullptr);
 
+// The colours of a label image in the `labels` style, one RGB per label in
+// point order (the pixels encode_label_png writes): label_color, or with
+// `objects` part_color. Throws lccp::Error if objects and labels differ in number.
+std::vector<std::array<std::uint8_t, 3>> label_rgb(const Labels& labels, const Labels* objects = nullptr);
+
 // The encoders above written with write_file_atomically
 // (lccp/io/atomic_file.hpp): the file appears only when complete. Errors
 // name the path.
