@@ -18,9 +18,7 @@ void ConfigOptions::add_to(CLI::App& command) {
 }
 
 SceneConfig ConfigOptions::resolve() const {
-  SceneConfig config = file.empty() ? SceneConfig{} : load_preset_or_file(file);
-  for (const std::string& setting : settings) apply_setting(config, setting);
-  return config;  // SceneSegmenter validates it
+  return resolve_config(file, settings);  // SceneSegmenter validates it
 }
 
 }  // namespace lccp::app

@@ -23,4 +23,10 @@ SceneConfig load_preset_or_file(const std::string& name_or_path) {
   throw Error("config " + name_or_path + ": no such preset (" + names + ") and not a path to a .yaml file");
 }
 
+SceneConfig resolve_config(const std::string& name_or_path, const std::vector<std::string>& settings) {
+  SceneConfig config = name_or_path.empty() ? SceneConfig{} : load_preset_or_file(name_or_path);
+  for (const std::string& setting : settings) apply_setting(config, setting);
+  return config;
+}
+
 }  // namespace lccp

@@ -59,12 +59,6 @@ class FrameQueue final : public FrameSource {
   std::deque<Frame> queue_;
 };
 
-SceneConfig resolve_config(const NodeSettings& settings) {
-  SceneConfig config = load_preset_or_file(settings.config);
-  for (const std::string& setting : settings.settings) apply_setting(config, setting);
-  return config;
-}
-
 SegmentBox box_of(const SegmentGeometry& segment, bool is_part, std::uint32_t object_id) {
   SegmentBox box;
   box.id = segment.id;
@@ -156,7 +150,7 @@ struct SegmentationNode::Impl {
 
   Impl(const NodeSettings& settings, Publish publish_to)
       : arena(settings.threads > 0 ? static_cast<int>(settings.threads) : tbb::task_arena::automatic),
-        segmenter(resolve_config(settings)),
+        segmenter(resolve_config(settings.config, settings.settings)),
         pipeline(segmenter, PipelineConfig{settings.frames_in_flight}),
         publish(std::move(publish_to)) {}
 

@@ -30,6 +30,11 @@ std::vector<std::string> preset_names();
 // load_config. Throws lccp::Error for a name that is neither, listing the presets.
 SceneConfig load_preset_or_file(const std::string& name_or_path);
 
+// load_preset_or_file(name_or_path) (the defaults, P1, for an empty name),
+// then every "key=value" of `settings` in turn with apply_setting: how the lccp
+// tool (--config, --set) and the ROS node (~config, ~KEY) build their config.
+SceneConfig resolve_config(const std::string& name_or_path, const std::vector<std::string>& settings);
+
 // Applies one `key=value` override, e.g. "beta_thresh_deg=20", or
 // "parts.beta_thresh_deg=20" for the second level (which must exist).
 void apply_setting(SceneConfig& config, const std::string& key_equals_value);
