@@ -90,6 +90,16 @@ TEST(AtomicFile, ASetWithAnUnwritableMemberWritesNone) {
   EXPECT_EQ(entries(dir), std::vector<std::string>{});
 }
 
+TEST(AtomicFile, ASetIsNamedInItsOrderSoTheLastFileMarksAWholeSet) {
+  const fs::path dir = test::scratch_dir("atomic");
+  fs::create_directories(dir / "frame_1.pcd" / "in_the_way");  // the last name cannot be given
+  const std::vector<FileBytes> files{{dir / "frame_1.png", bytes_of("image")}, {dir / "frame_1.pcd", bytes_of("cloud")}};
+  EXPECT_THROW(write_files_together(files), Error);
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"frame_1.pcd", "frame_1.png"}));  // no hidden file left
+  EXPECT_TRUE(fs::is_directory(dir / "frame_1.pcd"));
+  EXPECT_EQ(test::read_bytes(dir / "frame_1.png"), "image");
+}
+
 TEST(AtomicFile, ANamedPendingFileIsHiddenUnpredictableAndRemovedUnlessCommitted) {
   const fs::path dir = test::scratch_dir("atomic");
   fs::path first;

@@ -62,7 +62,7 @@ void FrameWriter::write(const FrameResult& result) {
   if (!result.frame.name.empty() && !input_stems_.insert(name).second) {
     throw Error("two inputs named " + name + ": their outputs would overwrite each other");
   }
-  write_files_together(frame_files(result, (directory_ / name).string()));  // together or not at all
+  write_files_together(frame_files(result, (directory_ / name).string()));  // the cloud named last
 }
 
 std::vector<FileBytes> FrameWriter::frame_files(const FrameResult& result, const std::string& stem) const {
@@ -71,17 +71,19 @@ std::vector<FileBytes> FrameWriter::frame_files(const FrameResult& result, const
   const Labels no_labels(cloud.size(), 0);
   const Labels& labels = scene.labels.size() == cloud.size() ? scene.labels : no_labels;
   const Labels* objects = scene.objects.size() == cloud.size() ? &scene.objects : nullptr;
+  // The labelled clouds come last: write_files_together names the files in
+  // this order, so a frame whose cloud exists has all its outputs.
   std::vector<FileBytes> files;
-  if (options_.saves("pcd")) {
-    files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels, options_.pcd_encoding(), objects)});
-  }
-  if (options_.saves("ply")) files.push_back({stem + ".ply", encode_labelled_ply(cloud, labels, objects)});
   if (options_.saves("png") && cloud.organized()) {
     files.push_back({stem + ".png", encode_label_png(cloud, labels, options_.image_style(), objects)});
   }
   if (options_.saves("segments")) {
     const std::string json = encode_segments_json(result.frame.index, result.frame.timestamp_us, scene);
     files.push_back({stem + ".segments.json", std::vector<std::uint8_t>(json.begin(), json.end())});
+  }
+  if (options_.saves("ply")) files.push_back({stem + ".ply", encode_labelled_ply(cloud, labels, objects)});
+  if (options_.saves("pcd")) {
+    files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels, options_.pcd_encoding(), objects)});
   }
   return files;
 }

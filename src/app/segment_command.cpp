@@ -64,7 +64,7 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
   const SceneSegmentation result = segmenter.segment(cloud);
   if (stop.stop_requested()) return kExitInterrupted;  // interrupted: nothing written
   const Labels* objects = result.objects.empty() ? nullptr : &result.objects;
-  std::vector<FileBytes> files{{output, encode_labelled_cloud(output, cloud, result.labels, out.pcd_encoding(), objects)}};
+  std::vector<FileBytes> files;  // the labelled cloud last: once it exists, so do the others
   if (!options.png.empty()) {
     files.push_back({options.png, encode_label_png(cloud, result.labels, out.image_style(), objects)});
   }
@@ -72,7 +72,8 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
     const std::string json = encode_segments_json(0, 0, result);
     files.push_back({options.segments, std::vector<std::uint8_t>(json.begin(), json.end())});
   }
-  write_files_together(files);  // all appear, or none does
+  files.push_back({output, encode_labelled_cloud(output, cloud, result.labels, out.pcd_encoding(), objects)});
+  write_files_together(files);
   print_summary(cloud, result);
   return kExitDone;
 }

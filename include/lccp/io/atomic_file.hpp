@@ -70,9 +70,12 @@ struct FileBytes {
   std::vector<std::uint8_t> bytes;
 };
 
-// Writes a set of files (one frame's outputs) so that none gets its name
-// before all are complete; the names are then given back to back, so the set
-// appears whole but for the microseconds between those renames.
+// Writes a set of files (one frame's outputs): all are written in full under
+// no name first, so a failure while writing leaves none; then they get their
+// names in the list's order, back to back. No program can make two names
+// appear in one step (rename(2) moves one), so a kill -9 between two of those
+// renames leaves only the list's first files: the last file marks a whole set,
+// and callers list their main output (the labelled cloud) last.
 void write_files_together(std::span<const FileBytes> files);
 
 }  // namespace lccp
