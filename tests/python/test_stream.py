@@ -81,7 +81,8 @@ def test_ctrl_c_stops_the_run(tmp_path, recording):
     # at once, and the stream left to the interpreter's exit ends without a hang.
     script = tmp_path / "interrupt.py"
     script.write_text(f"""
-import _thread, threading, time, lccp_stream
+import _thread, signal, threading, time, lccp_stream
+signal.signal(signal.SIGINT, signal.default_int_handler)  # as at a terminal, even if the tests were started with SIGINT ignored
 replay = lccp_stream.Replay({str(recording)!r}, config="p2", threads=1, inflight=1)
 frames = 0
 try:
