@@ -77,12 +77,12 @@ PclLccpResult run_pcl_lccp(const PointCloud& cloud, const LccpConfig& config) {
   result.supervoxels_ms = ms_since(start);
   result.supervoxel_count = static_cast<std::uint32_t>(clusters.size());
 
-  // LCCP with the paper's setup: CC + SC, no smoothness check, no k-convexity.
+  // LCCP as configured: CC, SC and PCL's smoothness check as in `config`; no k-convexity.
   start = Clock::now();
   pcl::LCCPSegmentation<PclPoint> lccp;
   lccp.setConcavityToleranceThreshold(config.convexity.beta_thresh_deg);
   lccp.setSanityCheck(config.convexity.sanity_criterion);
-  lccp.setSmoothnessCheck(false, voxel_m, seed_m);
+  lccp.setSmoothnessCheck(config.convexity.smoothness_check, voxel_m, seed_m, config.convexity.smoothness_threshold);
   lccp.setKFactor(0);
   lccp.setInputSupervoxels(clusters, adjacency);
   lccp.setMinSegmentSize(config.filter.n_filter_supervoxels);

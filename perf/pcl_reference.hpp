@@ -22,10 +22,10 @@ struct PclLccpResult {
 };
 
 // Segments `cloud` with PCL using `config`: voxel_size_m, seed_size_m, the three
-// importances, beta_thresh_deg, sanity_criterion and n_filter_supervoxels. PCL's own
-// defaults are kept for everything else: single camera transform for organized clouds
-// only, sanity thresholds (60 deg, 25 deg, 0.25) hard-coded in PCL, no supervoxel
-// refinement, smoothness check off, extended convexity off (k = 0).
+// importances, beta_thresh_deg, sanity_criterion, smoothness_check with its threshold
+// and n_filter_supervoxels. PCL's own defaults are kept for everything else: single
+// camera transform for organized clouds only, sanity thresholds (60 deg, 25 deg, 0.25)
+// hard-coded in PCL, no supervoxel refinement, extended convexity off (k = 0).
 // config.voxels.binning and the theta/beta_off/slope fields have no PCL setter and are
 // ignored. Throws lccp::Error if the cloud has no finite point.
 PclLccpResult run_pcl_lccp(const PointCloud& cloud, const LccpConfig& config);

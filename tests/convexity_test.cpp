@@ -25,6 +25,7 @@ Patch patch(double x, double y, double z, double nx, double ny, double nz) {
 }
 
 ConvexityConfig paper_config() { return ConvexityConfig{}; }  // beta 10, SC on, 60 / 25 / 0.25
+constexpr PatchSizes kP1Sizes{0.005f, 0.02f};                  // v and s of P1
 
 // --- eq. (1): convexity criterion -------------------------------------------------------
 
@@ -289,7 +290,7 @@ TEST(ClassifyEdges, MatchesIsConvexPerEdge) {
   const std::vector<Edge> edges = {{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 4}, {1, 5}, {2, 3}};
   const std::vector<std::uint8_t> hand = {1, 0, 1, 0, 1, 0, 0};
   const ConvexityConfig cfg = paper_config();
-  const auto flags = classify_edges(edges, c, n, cfg);
+  const auto flags = classify_edges(edges, c, n, cfg, kP1Sizes);
   ASSERT_EQ(flags.size(), edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const Patch pa{c[edges[e].a], n[edges[e].a]}, pb{c[edges[e].b], n[edges[e].b]};
@@ -299,7 +300,7 @@ TEST(ClassifyEdges, MatchesIsConvexPerEdge) {
   // With SC off, (0,3) and (1,2) and (2,3) follow CC: true, true, true.
   ConvexityConfig no_sc = cfg;
   no_sc.sanity_criterion = false;
-  const auto flags2 = classify_edges(edges, c, n, no_sc);
+  const auto flags2 = classify_edges(edges, c, n, no_sc, kP1Sizes);
   EXPECT_EQ(flags2, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 0, 1}));
 }
 
@@ -326,7 +327,7 @@ TEST(ClassifyEdges, LargeRandomGraphMatchesIsConvex) {
   for (bool sanity : {true, false}) {
     ConvexityConfig cfg = paper_config();
     cfg.sanity_criterion = sanity;
-    const auto flags = classify_edges(edges, c, n, cfg);
+    const auto flags = classify_edges(edges, c, n, cfg, kP1Sizes);
     ASSERT_EQ(flags.size(), edges.size());
     std::size_t ones = 0;
     for (std::size_t e = 0; e < edges.size(); ++e) {
@@ -339,8 +340,50 @@ TEST(ClassifyEdges, LargeRandomGraphMatchesIsConvex) {
   }
 }
 
+// --- PCL's smoothness check (beyond the paper) -------------------------------------------
+
+TEST(SmoothnessCriterion, ParallelPatchesWithAStepAreCut) {
+  // Two upward patches 2 cm apart in x, the second 1 mm lower: parallel normals explain no
+  // offset (|n1 x n2| = 0), so the step of 1 mm is measured against the slack alone,
+  // 0.1 v = 0.5 mm at P1: cut. A 0.4 mm step is within it.
+  ConvexityConfig cfg = paper_config();
+  cfg.smoothness_check = true;
+  const Patch upper = patch(0, 0, 0, 0, 0, 1);
+  EXPECT_NEAR(step_distance_m(upper, patch(0.02, 0, -0.001, 0, 0, 1)), 0.001f, 1e-6f);
+  EXPECT_FALSE(smoothness_criterion(upper, patch(0.02, 0, -0.001, 0, 0, 1), cfg, kP1Sizes));
+  EXPECT_TRUE(smoothness_criterion(upper, patch(0.02, 0, -0.0004, 0, 0, 1), cfg, kP1Sizes));
+  // Both pass CC (beta 0 < 10) and SC (no intersection line): only the check cuts the step.
+  EXPECT_TRUE(is_convex(upper, patch(0.02, 0, -0.001, 0, 0, 1), cfg));
+  const std::vector<Eigen::Vector3f> c{{0, 0, 0}, {0.02f, 0, -0.001f}}, n{{0, 0, 1}, {0, 0, 1}};
+  EXPECT_EQ(classify_edges({{0, 1}}, c, n, cfg, kP1Sizes), std::vector<std::uint8_t>{0});
+  cfg.smoothness_check = false;
+  EXPECT_EQ(classify_edges({{0, 1}}, c, n, cfg, kP1Sizes), std::vector<std::uint8_t>{1});
+}
+
+TEST(SmoothnessCriterion, TheAngleExplainsTheOffsetOfABentSurface) {
+  // A ridge: p1 normal (0, 0, 1) at the origin, p2 tilted 30 deg about y, 1 cm along x
+  // and 1 cm * tan(15 deg) lower (both patches tangent to one bent surface).
+  // d = (-0.01, 0, 0.00268): |d . n1| = 2.68 mm; |d . n2| = |-0.01 sin30 + 0.00268 cos30|
+  // = 2.68 mm. Allowed: |n1 x n2| s + 0.1 v = sin30 * 2 cm + 0.5 mm = 10.5 mm: smooth.
+  ConvexityConfig cfg = paper_config();
+  cfg.smoothness_check = true;
+  const double t = deg2rad(30.0);
+  const Patch p1 = patch(0, 0, 0, 0, 0, 1);
+  const Patch p2 = patch(0.01, 0, -0.01 * std::tan(t / 2), std::sin(t), 0, std::cos(t));
+  EXPECT_NEAR(step_distance_m(p1, p2), 0.00268f, 1e-5f);
+  EXPECT_TRUE(smoothness_criterion(p1, p2, cfg, kP1Sizes));
+  // p2 3 cm lower is a step no 30 deg bend over 2 cm explains: d = (-0.01, 0, 0.03),
+  // |d . n1| = 30 mm, |d . n2| = |-0.005 + 0.03 cos30| = 20.98 mm > 10.5 mm.
+  const Patch stepped = patch(0.01, 0, -0.03, std::sin(t), 0, std::cos(t));
+  EXPECT_NEAR(step_distance_m(p1, stepped), 0.02098f, 1e-5f);
+  EXPECT_FALSE(smoothness_criterion(p1, stepped, cfg, kP1Sizes));
+  // The slack is in voxel sizes: threshold 3 at v = 5 mm allows 15 mm more, 25 mm in all.
+  cfg.smoothness_threshold = 3.0f;
+  EXPECT_TRUE(smoothness_criterion(p1, stepped, cfg, kP1Sizes));
+}
+
 TEST(ClassifyEdges, EmptyEdgeList) {
-  const auto flags = classify_edges({}, {}, {}, paper_config());
+  const auto flags = classify_edges({}, {}, {}, paper_config(), kP1Sizes);
   EXPECT_TRUE(flags.empty());
 }
 

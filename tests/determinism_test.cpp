@@ -75,7 +75,8 @@ StageOutputs run_stages(const PointCloud& cloud, const LccpConfig& cfg) {
   o.seeds = select_seeds(o.grid, cfg.supervoxels, cfg.voxels.voxel_size_m);
   o.sv = grow_supervoxels(o.grid, o.voxel_normals, o.seeds, cfg.supervoxels, cfg.voxels.voxel_size_m);
   o.edges = supervoxel_adjacency(o.grid, o.sv);
-  o.convex = classify_edges(o.edges, o.sv.centroids, o.sv.normals, cfg.convexity);
+  o.convex = classify_edges(o.edges, o.sv.centroids, o.sv.normals, cfg.convexity,
+                            PatchSizes{cfg.voxels.voxel_size_m, cfg.supervoxels.seed_size_m});
   o.components = convex_components(o.sv.size(), o.edges, o.convex);
   o.filtered = o.components;
   merge_small_segments(o.filtered, o.edges, cfg.filter.n_filter_supervoxels);

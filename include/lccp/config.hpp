@@ -31,6 +31,11 @@ struct ConvexityConfig {
   float theta_max_deg = 60.0f;          // eq. (3)
   float beta_off_deg = 25.0f;           // eq. (3)
   float sigmoid_slope_per_deg = 0.25f;  // a in eq. (3)
+  // PCL's smoothness check, beyond the paper (pcl::LCCPSegmentation::
+  // setSmoothnessCheck): an edge between two patches offset along their normals
+  // by more than their angle explains (a step) is not convex. Off in the paper.
+  bool smoothness_check = false;
+  float smoothness_threshold = 0.1f;  // the step's slack, in voxel sizes v (PCL's default)
 };
 
 // Support-plane removal before segmentation (paper Sec. III.C, Fig. 5: "an

@@ -73,6 +73,8 @@ void validate(const LccpConfig& c) {
   require(in_range(c.convexity.beta_off_deg, 0.0f, 180.0f), "beta_off_deg", "in [0, 180]", c.convexity.beta_off_deg);
   require(in_range(c.convexity.sigmoid_slope_per_deg, 1e-6f, 1e3f), "sigmoid_slope_per_deg", "> 0",
           c.convexity.sigmoid_slope_per_deg);
+  require(in_range(c.convexity.smoothness_threshold, 0.0f, 1e6f), "smoothness_threshold", ">= 0",
+          c.convexity.smoothness_threshold);
   require(c.filter.n_filter_supervoxels <= 1000000u, "n_filter_supervoxels", "<= 1000000",
           c.filter.n_filter_supervoxels);
   validate_limits(c);

@@ -55,13 +55,24 @@ bool is_convex(const Patch& p1, const Patch& p2, const ConvexityConfig& config) 
   return convexity_criterion(p1, p2, config) && (!config.sanity_criterion || sanity_criterion(p1, p2, config));
 }
 
+float step_distance_m(const Patch& p1, const Patch& p2) {
+  const Eigen::Vector3f d = p1.centroid - p2.centroid;
+  return std::min(std::abs(d.dot(p1.normal)), std::abs(d.dot(p2.normal)));
+}
+
+bool smoothness_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes) {
+  const float explained_m = p1.normal.cross(p2.normal).norm() * sizes.seed_size_m;
+  return step_distance_m(p1, p2) <= explained_m + config.smoothness_threshold * sizes.voxel_size_m;
+}
+
 std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges, const std::vector<Eigen::Vector3f>& centroids,
-                                         const std::vector<Eigen::Vector3f>& normals, const ConvexityConfig& config) {
+                                         const std::vector<Eigen::Vector3f>& normals, const ConvexityConfig& config,
+                                         const PatchSizes& sizes) {
   std::vector<std::uint8_t> convex(edges.size());
   tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {
     const Patch p1{centroids[edges[e].a], normals[edges[e].a]};
     const Patch p2{centroids[edges[e].b], normals[edges[e].b]};
-    convex[e] = is_convex(p1, p2, config);
+    convex[e] = is_convex(p1, p2, config) && (!config.smoothness_check || smoothness_criterion(p1, p2, config, sizes));
   });
   return convex;
 }

@@ -66,7 +66,8 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
     case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, sv, v); break;
     case Stage::adjacency: w.edges = supervoxel_adjacency(w.grid, w.supervoxels); break;
     case Stage::classify:
-      w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity);
+      w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity,
+                                PatchSizes{v, sv.seed_size_m});
       break;
     case Stage::components: w.segment_of_supervoxel = convex_components(w.supervoxels.size(), w.edges, w.convex); break;
     case Stage::filter: filter_and_label(w, config_.filter.n_filter_supervoxels); break;

@@ -102,8 +102,8 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 24>& keys() {
-  static const std::array<Key, 24> table{
+const std::array<Key, 26>& keys() {
+  static const std::array<Key, 26> table{
       bool_key("support_plane", [](auto& c) -> auto& { return c.support.enabled; },
                "remove the support plane first, Sec. III.C (true/false)"),
       float_key("support_distance_m", [](auto& c) -> auto& { return c.support.distance_m; },
@@ -127,6 +127,10 @@ const std::array<Key, 24>& keys() {
       float_key("beta_thresh_deg", [](auto& c) -> auto& { return c.convexity.beta_thresh_deg; }, "CC bias beta_thresh (degrees), eq. 1"),
       bool_key("sanity_criterion", [](auto& c) -> auto& { return c.convexity.sanity_criterion; }, "apply SC, eq. 4 (true/false)"),
       float_key("theta_max_deg", [](auto& c) -> auto& { return c.convexity.theta_max_deg; }, "SC sigmoid maximum (degrees), eq. 3"),
+      bool_key("smoothness_check", [](auto& c) -> auto& { return c.convexity.smoothness_check; },
+               "PCL's step test beyond the paper: cut edges between offset patches (true/false)"),
+      float_key("smoothness_threshold", [](auto& c) -> auto& { return c.convexity.smoothness_threshold; },
+                "smoothness check's slack, in voxel sizes v (PCL's default 0.1)"),
       float_key("beta_off_deg", [](auto& c) -> auto& { return c.convexity.beta_off_deg; }, "SC sigmoid offset (degrees), eq. 3"),
       float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
       count_key("n_filter_supervoxels", [](auto& c) -> auto& { return c.filter.n_filter_supervoxels; },

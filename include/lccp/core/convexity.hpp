@@ -29,10 +29,23 @@ bool sanity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& c
 // Eq. (5): CC and (SC if enabled).
 bool is_convex(const Patch& p1, const Patch& p2, const ConvexityConfig& config);
 
-// One flag per edge (1 = convex), computed in parallel without locks.
+// The sizes the smoothness check measures steps against: v and s.
+struct PatchSizes {
+  float voxel_size_m;
+  float seed_size_m;
+};
+// The patches' offset along their normals: min(|d . n1|, |d . n2|), d = x1 - x2, metres.
+float step_distance_m(const Patch& p1, const Patch& p2);
+// PCL's smoothness check (beyond the paper; pcl/segmentation/impl/
+// lccp_segmentation.hpp, connIsConvex): the step is at most |n1 x n2| s, what
+// the patches' angle explains over a seed spacing, plus smoothness_threshold * v.
+bool smoothness_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes);
+
+// One flag per edge (1 = convex: eq. (5), and smooth if the check is on),
+// computed in parallel without locks.
 std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges,
                                          const std::vector<Eigen::Vector3f>& centroids,
                                          const std::vector<Eigen::Vector3f>& normals,
-                                         const ConvexityConfig& config);
+                                         const ConvexityConfig& config, const PatchSizes& sizes);
 
 }  // namespace lccp
