@@ -30,9 +30,11 @@ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLCCP_SANITIZE_THREA
   -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-tsan -j"$jobs" --target lccp_concurrency_tests
 
-# 3. Run them. The test binary must have loaded the TSan oneTBB, not Debian's.
+# 3. Run them. The test binary must load the TSan oneTBB, not Debian's; both
+# paths are resolved, as the checkout may be reached through a symlink.
 tests=build-tsan/tests/lccp_concurrency_tests
-if ! ldd "$tests" | grep -q "$PWD/$onetbb/lib/libtbb"; then
+loaded=$(ldd "$tests" | awk '$1 ~ /^libtbb\.so/ { print $3 }')
+if [[ -z $loaded || $(readlink -f "$loaded") != $(readlink -f "$onetbb/lib/$(basename "$loaded")") ]]; then
   echo "tsan: $tests is not linked against $onetbb" >&2
   ldd "$tests" | grep -i tbb >&2
   exit 1
