@@ -71,7 +71,7 @@ struct StageOutputs {
 StageOutputs run_stages(const PointCloud& cloud, const LccpConfig& cfg) {
   StageOutputs o;
   o.grid = voxelize(cloud, cfg.voxels);
-  o.voxel_normals = estimate_voxel_normals(o.grid);
+  o.voxel_normals = estimate_voxel_normals(o.grid, NormalConfig{});
   o.seeds = select_seeds(o.grid, cfg.supervoxels, cfg.voxels.voxel_size_m);
   o.sv = grow_supervoxels(o.grid, o.voxel_normals, o.seeds, cfg.supervoxels, cfg.voxels.voxel_size_m);
   o.edges = supervoxel_adjacency(o.grid, o.sv);

@@ -26,7 +26,7 @@ struct Stages {
 Stages run(const PointCloud& cloud, const LccpConfig& cfg = {}) {
   Stages s;
   s.grid = voxelize(cloud, cfg.voxels);
-  s.voxel_normals = estimate_voxel_normals(s.grid);
+  s.voxel_normals = estimate_voxel_normals(s.grid, NormalConfig{});
   s.seeds = select_seeds(s.grid, cfg.supervoxels, cfg.voxels.voxel_size_m);
   s.sv = grow_supervoxels(s.grid, s.voxel_normals, s.seeds, cfg.supervoxels, cfg.voxels.voxel_size_m);
   return s;

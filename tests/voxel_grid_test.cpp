@@ -452,7 +452,7 @@ TEST(VoxelNormals, FrontoParallelPlaneFacesTheSensor) {
     SCOPED_TRACE(int(b));
     const VoxelGrid g = voxelize(scene.cloud, VoxelConfig{0.005f, b});
     ASSERT_GT(g.size(), 300u);  // ~20 x 20 voxels
-    const auto n = estimate_voxel_normals(g);
+    const auto n = estimate_voxel_normals(g, NormalConfig{});
     ASSERT_EQ(n.size(), g.size());
     expect_normals_within(n, {0, 0, -1}, 1.0);
   }
@@ -467,7 +467,7 @@ TEST(VoxelNormals, TiltedPlanesMatchAnalyticNormalTowardSensor) {
     const auto scene = test::render({r});
     for (Binning b : {Binning::automatic, Binning::euclidean}) {
       const VoxelGrid g = voxelize(scene.cloud, VoxelConfig{0.005f, b});
-      const auto n = estimate_voxel_normals(g);
+      const auto n = estimate_voxel_normals(g, NormalConfig{});
       ASSERT_EQ(n.size(), g.size());
       expect_normals_within(n, expected, 1.0);
     }
@@ -485,8 +485,47 @@ TEST(VoxelNormals, IsolatedVoxelPointsToTheSensor) {
   const VoxelGrid g = voxelize(cloud, euclidean());
   const std::uint32_t v = g.voxel_of_point.back();
   ASSERT_EQ(g.neighbors.count(v), 0u);
-  const auto n = estimate_voxel_normals(g);
+  const auto n = estimate_voxel_normals(g, NormalConfig{});
   EXPECT_LT((n[v] - (-lonely.normalized())).norm(), 1e-5f) << n[v].transpose();
+}
+
+// The largest angle between a voxel's normal and the normal of the face its
+// centroid lies on, over voxels whose centroid is within `near_m` of the crease
+// (and farther than half a voxel from the legs' outer ends).
+double worst_at_crease(const test::ConcaveCorner& c, const VoxelGrid& g, const std::vector<Eigen::Vector3f>& n,
+                       double near_m) {
+  const std::array<Eigen::Vector3d, 2> face{test::normal_toward_sensor(c.wall), test::normal_toward_sensor(c.table)};
+  double worst = 0;
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    const Eigen::Vector3d x = g.centroids[v].cast<double>();
+    if (c.distance_to_edge(x) > near_m || std::abs(x.x()) > 0.09) continue;
+    worst = std::max(worst, test::angle_deg(n[v], face[c.side(x)]));
+  }
+  return worst;
+}
+
+// Beyond the paper (NormalConfig::crease_preserving): at a 90 deg crease, concave or
+// convex, the 2-ring neighbourhoods of the voxels next to it span both faces, so their
+// PCA normals blend the two (up to 45 deg off); taking the plane of a flatter
+// neighbouring neighbourhood that they lie on keeps them close to their own face.
+TEST(VoxelNormals, CreasePreservingNormalsDoNotBlendTheTwoFacesOfACrease) {
+  for (const test::ConcaveCorner& c : {test::concave_corner(), test::convex_ridge()}) {
+    const auto scene = test::render({c.wall, c.table});
+    for (Binning b : {Binning::automatic, Binning::euclidean}) {
+      SCOPED_TRACE(int(b));
+      const VoxelGrid g = voxelize(scene.cloud, VoxelConfig{0.005f, b});
+      const auto blended = estimate_voxel_normals(g, NormalConfig{false});
+      const auto crisp = estimate_voxel_normals(g, NormalConfig{true});
+      EXPECT_GT(worst_at_crease(c, g, blended, 0.008), 20.0);
+      EXPECT_LT(worst_at_crease(c, g, crisp, 0.008), 10.0);  // measured 24 and 5 deg
+      // Away from the crease both are the PCA normal of a flat neighbourhood.
+      for (std::size_t v = 0; v < g.size(); ++v) {
+        if (c.distance_to_edge(g.centroids[v].cast<double>()) > 0.02 && std::abs(g.centroids[v].x()) < 0.09) {
+          ASSERT_LT(test::angle_deg(crisp[v], blended[v].cast<double>()), 0.5) << v;
+        }
+      }
+    }
+  }
 }
 
 TEST(VoxelNormals, GivenPointNormalsAreAveragedNotFlipped) {
@@ -500,7 +539,7 @@ TEST(VoxelNormals, GivenPointNormalsAreAveragedNotFlipped) {
   }
   const VoxelGrid g = voxelize(h.cloud, euclidean());
   ASSERT_EQ(g.mean_normals.size(), g.size());
-  const auto n = estimate_voxel_normals(g);
+  const auto n = estimate_voxel_normals(g, NormalConfig{});
   ASSERT_EQ(n.size(), g.size());
   for (std::size_t v = 0; v < g.size(); ++v) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();

@@ -18,6 +18,16 @@ struct VoxelConfig {
   Binning binning = Binning::automatic;
 };
 
+// Voxel normals (stage 2). crease_preserving, beyond the paper (docs/ARCHITECTURE.md,
+// departures): where a voxel's neighbourhood straddles a crease, the voxel takes
+// the plane of the flattest neighbouring neighbourhood it lies on, so normals,
+// and the supervoxels grown from them, do not blend two surfaces. Off: it also
+// erases faces narrower than the neighbourhood (two voxels), e.g. the 1 cm step
+// between two touching boxes' parallel sides (perf/RESULTS.md, issue 15).
+struct NormalConfig {
+  bool crease_preserving = false;
+};
+
 struct SupervoxelConfig {
   float seed_size_m = 0.02f;   // s: seed grid spacing
   float spatial_weight = 1.0f; // w_s, per seed_size_m of distance
@@ -70,6 +80,7 @@ struct LimitsConfig {
 struct LccpConfig {
   SupportPlaneConfig support;
   VoxelConfig voxels;
+  NormalConfig normals;
   SupervoxelConfig supervoxels;
   ConvexityConfig convexity;
   FilterConfig filter;

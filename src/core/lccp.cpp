@@ -61,7 +61,7 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
   switch (stage) {
     case Stage::support: remove_support(w, config_.support); break;
     case Stage::voxelize: w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip); break;
-    case Stage::normals: w.normals = estimate_voxel_normals(w.grid); break;
+    case Stage::normals: w.normals = estimate_voxel_normals(w.grid, config_.normals); break;
     case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;
     case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, sv, v); break;
     case Stage::adjacency: w.edges = supervoxel_adjacency(w.grid, w.supervoxels); break;

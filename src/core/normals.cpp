@@ -1,5 +1,8 @@
 #include "lccp/core/normals.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "parallel.hpp"
 #include "plane_fit.hpp"
 
@@ -50,11 +53,60 @@ std::vector<Eigen::Vector3f> given_normals(const VoxelGrid& grid) {
   return normals;
 }
 
+// A neighbourhood's least-squares plane: its centre, its normal, the variance
+// of the neighbourhood along that normal (m^2) and that variance's share of the
+// total (the surface variation: 0 on a plane, larger across a crease).
+struct LocalPlane {
+  Eigen::Vector3f centre;
+  Eigen::Vector3f normal;
+  float residual_m2 = 0;
+  float variation = 0;
+};
+
+LocalPlane local_plane(const Moments& m, const Eigen::Vector3f& centroid) {
+  const Eigen::Vector3f normal = pca_normal(m, centroid);
+  const Eigen::Matrix3d covariance = detail::covariance_of(m);
+  const Eigen::Vector3d n = normal.cast<double>();
+  const double residual = std::max(0.0, n.dot(covariance * n));
+  return {(m.segment<3>(1) / m[0]).cast<float>(), normal, static_cast<float>(residual),
+          static_cast<float>(residual / std::max(covariance.trace(), 1e-30))};
+}
+
+// Whether a voxel centroid lies on a neighbourhood's plane: within two standard
+// deviations of the fit, plus 0.1 mm for float rounding (the coarsest spacing
+// LimitsConfig allows is 61 um).
+bool lies_on(const LocalPlane& plane, const Eigen::Vector3f& x) {
+  return std::abs(plane.normal.dot(x - plane.centre)) <= 2.0f * std::sqrt(plane.residual_m2) + 1e-4f;
+}
+
+// Crease-preserving normals (a departure from the paper, docs/ARCHITECTURE.md).
+// Near a crease a voxel's neighbourhood spans both surfaces and its plane fits
+// neither, while some neighbour's neighbourhood lies on one surface only. Each
+// voxel takes the plane of the flattest neighbourhood, among its own and its
+// neighbours', that its centroid lies on, turned toward the sensor.
+std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std::vector<LocalPlane>& planes) {
+  std::vector<Eigen::Vector3f> normals(grid.size());
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
+    const Eigen::Vector3f& x = grid.centroids[v];
+    const LocalPlane* best = &planes[v];
+    for (const std::uint32_t* u = grid.neighbors.begin(v); u != grid.neighbors.end(v); ++u) {
+      if (planes[*u].variation < best->variation && lies_on(planes[*u], x)) best = &planes[*u];
+    }
+    normals[v] = best->normal.dot(x) > 0 ? Eigen::Vector3f(-best->normal) : best->normal;
+  });
+  return normals;
+}
+
 }  // namespace
 
-std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid) {
+std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const NormalConfig& config) {
   if (!grid.mean_normals.empty()) return given_normals(grid);
   const std::vector<Moments> neighbourhoods = two_ring_moments(grid, centroid_moments(grid));
+  if (config.crease_preserving) {
+    std::vector<LocalPlane> planes(grid.size());
+    detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { planes[v] = local_plane(neighbourhoods[v], grid.centroids[v]); });
+    return crease_preserving(grid, planes);
+  }
   std::vector<Eigen::Vector3f> normals(grid.size());
   detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { normals[v] = pca_normal(neighbourhoods[v], grid.centroids[v]); });
   return normals;

@@ -102,8 +102,8 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 26>& keys() {
-  static const std::array<Key, 26> table{
+const std::array<Key, 27>& keys() {
+  static const std::array<Key, 27> table{
       bool_key("support_plane", [](auto& c) -> auto& { return c.support.enabled; },
                "remove the support plane first, Sec. III.C (true/false)"),
       float_key("support_distance_m", [](auto& c) -> auto& { return c.support.distance_m; },
@@ -120,6 +120,8 @@ const std::array<Key, 26>& keys() {
       Key{"binning", "voxel cells: auto (camera if organized), euclidean or camera",
           [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
           [](const LccpConfig& c) { return show(c.voxels.binning); }},
+      bool_key("crease_preserving_normals", [](auto& c) -> auto& { return c.normals.crease_preserving; },
+               "beyond the paper: normals near a crease from the flattest neighbourhood they lie on (true/false)"),
       float_key("seed_size_m", [](auto& c) -> auto& { return c.supervoxels.seed_size_m; }, "supervoxel seed spacing s (metres)"),
       float_key("spatial_weight", [](auto& c) -> auto& { return c.supervoxels.spatial_weight; }, "w_s, per seed spacing of distance"),
       float_key("normal_weight", [](auto& c) -> auto& { return c.supervoxels.normal_weight; }, "w_n, on 1 - |n1.n2|"),

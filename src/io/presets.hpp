@@ -6,7 +6,7 @@
 namespace lccp::detail {
 
 struct Preset {
-  std::string_view name;  // the file's stem: p1, p2, objects, robot
+  std::string_view name;  // the file's stem: p1, p2, paper, objects, robot
   std::string_view yaml;  // the file's text
 };
 

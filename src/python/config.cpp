@@ -65,7 +65,7 @@ by path (str or os.PathLike; anything with a folder or a suffix), or a dict of
 keys (unknown keys and out-of-range values raise ValueError naming the key).
 Returns a Config.
 )doc");
-  module.def("presets", &preset_names, "The names of the built-in presets, sorted (p1, p2, objects, robot).");
+  module.def("presets", &preset_names, "The names of the built-in presets, sorted (objects, p1, p2, paper, robot).");
 }
 
 }  // namespace lccp::python

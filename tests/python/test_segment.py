@@ -87,7 +87,7 @@ def test_config_forms_agree(tmp_path, source_dir, mosd_cloud):
 
 
 def test_config_objects(source_dir):
-    assert lccp_stream.presets() == ["objects", "p1", "p2", "robot"]
+    assert lccp_stream.presets() == ["objects", "p1", "p2", "paper", "robot"]
     robot = lccp_stream.load_config("robot")
     assert robot.levels == 2 and lccp_stream.load_config("p1").levels == 1
     text = str(robot)

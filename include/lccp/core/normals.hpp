@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "lccp/config.hpp"
 #include "lccp/core/voxel_grid.hpp"
 
 namespace lccp {
@@ -13,6 +14,9 @@ namespace lccp {
 // flipped toward the sensor at the origin. Voxels whose neighbourhood is
 // degenerate get the direction toward the sensor. If the grid carries mean
 // point normals (merged multi-view clouds, paper Fig. 3) those are used instead.
-std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid);
+// With config.crease_preserving (beyond the paper), a voxel whose own
+// neighbourhood straddles a crease takes the plane of the flattest neighbouring
+// neighbourhood it lies on instead: normals do not blend across the crease.
+std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const NormalConfig& config);
 
 }  // namespace lccp
