@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -111,14 +110,13 @@ inline Hit hit_object(const Ray& world_ray, const ContactObject& o) {
 }
 
 // The Kinect v1 measurement of true depth z on a surface hit at `cos2` =
-// cos^2(incidence): NaN for no return, else the quantized noisy depth.
-inline double measure_depth(double z, double cos2, std::uint64_t key) {
+// cos^2(incidence), with the pixel's random numbers as the synthetic scene draws
+// them (synthetic::detail::pixel_noise): NaN for no return, else the quantized noisy depth.
+inline double measure_depth(double z, double cos2, const synthetic::detail::PixelNoise& noise) {
   namespace k = synthetic::detail;
-  const std::uint64_t r1 = k::splitmix64(key), r2 = k::splitmix64(key ^ 0x5bd1e995u);
-  const double uniform = static_cast<double>(r1 >> 11) * 0x1.0p-53;
-  if (cos2 < k::kCosMaxIncidenceSquared || uniform < k::kDropoutProbability) return kNaN;
-  const double p = (static_cast<double>(r2 >> 12) + 0.5) * 0x1.0p-52;
-  return k::quantize_depth_m(z + k::axial_noise_sigma_m(z) * k::standard_normal_quantile(p));
+  const bool returns = cos2 >= k::kCosMaxIncidenceSquared && z >= k::kMinRangeM && z <= k::kMaxRangeM;
+  if (!returns || noise.dropout) return kNaN;
+  return k::quantize_depth_m(z + k::axial_noise_sigma_m(z) * noise.gaussian);
 }
 
 }  // namespace detail
@@ -131,6 +129,8 @@ inline ContactScene contact_scene(const ContactObject& object, const ContactView
       target + view.distance_m * Eigen::Vector3d(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
   const Pose pose = look_at(eye, target);
   const PinholeCamera cam;
+  const synthetic::detail::NormalDeviates normal;
+  const std::uint64_t key = synthetic::detail::frame_key(view.seed, 0);
   ContactScene scene;
   scene.camera_from_world = pose;
   scene.cloud.width = static_cast<std::uint32_t>(cam.width);
@@ -146,7 +146,8 @@ inline ContactScene contact_scene(const ContactObject& object, const ContactView
       double z = hit.t;
       if (z < synthetic::detail::kNoHit && view.noisy) {
         const double c = ray.direction.normalized().dot(hit.normal);
-        z = detail::measure_depth(z, c * c, (view.seed << 20) ^ std::uint64_t(row * cam.width + col));
+        const std::uint64_t pixel = std::uint64_t(row) * std::uint64_t(cam.width) + std::uint64_t(col);
+        z = detail::measure_depth(z, c * c, synthetic::detail::pixel_noise(key, pixel, normal));
       }
       const bool seen = z < synthetic::detail::kNoHit && std::isfinite(z);
       scene.cloud.points.push_back(seen ? Eigen::Vector3f((z * d_cam).cast<float>()) : Eigen::Vector3f::Constant(kNaN));
