@@ -239,15 +239,13 @@ TEST_F(RecordingTest, RealtimeReplayKeepsTheRecordingsPace) {
   EXPECT_LT(seconds, 60.0);  // a hang, not speed: a loaded machine or a sanitizer build is slow
 }
 
-TEST_F(RecordingTest, TruncatedRecordingFailsWithinTheStallTimeout) {
+TEST_F(RecordingTest, TruncatedRecordingIsRefusedNamingTheFile) {
   const fs::path truncated = *directory_ / "truncated.oni";
   const std::string bytes = test::read_bytes(recording());
   test::write_bytes(truncated, bytes.substr(0, bytes.size() / 2));
   const auto start = std::chrono::steady_clock::now();
   try {
-    ReplayOptions options;
-    options.stall_timeout_ms = 1000;
-    const auto source = open_recording(truncated, options);
+    const auto source = open_recording(truncated);
     while (source->next({})) {
     }
     ADD_FAILURE() << "a truncated recording replayed to the end";
@@ -255,6 +253,27 @@ TEST_F(RecordingTest, TruncatedRecordingFailsWithinTheStallTimeout) {
     EXPECT_NE(std::string(e.what()).find("truncated.oni"), std::string::npos) << e.what();
   }
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
+
+// The file is checked when it is opened and read frame by frame after: a file cut
+// while it is replayed ends the replay with one line naming it and the frame.
+TEST_F(RecordingTest, RecordingCutWhileReplayingFailsNamingTheFrame) {
+  const fs::path cut = *directory_ / "cut.oni";
+  const std::string bytes = test::read_bytes(recording());
+  test::write_bytes(cut, bytes);
+  const auto source = open_recording(cut);
+  ASSERT_TRUE(source->next({}).has_value());
+  fs::resize_file(cut, bytes.size() / 2);
+  std::uint64_t frames = 1;
+  try {
+    while (source->next({})) ++frames;
+    ADD_FAILURE() << "a recording cut in half replayed to the end";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cut.oni: frame " + std::to_string(frames) + ": "), std::string::npos) << message;
+  }
+  EXPECT_GT(frames, 1u);
+  EXPECT_LT(frames, kRecordedFrames);
 }
 
 TEST(Recording, MissingOrWrongFilesAreNamed) {

@@ -1,12 +1,14 @@
 // The .oni structure check (src/capture/oni_check.*) and the frame checks of
-// DepthStream::to_frame: the bundled recordings pass, our 16zT decoder agrees
-// with OpenNI2's on every frame, and each crafted inconsistency is refused with
+// DepthStream::to_frame: the bundled recordings pass, our reader agrees with
+// OpenNI2's player on every frame, and each crafted inconsistency is refused with
 // one line naming the file.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -72,25 +74,124 @@ TEST_F(OniCheckTest, BytesAfterTheEndRecordAreNeverRead) {
   EXPECT_EQ(check(recording() + std::string(1000, '\xab')).frames, 62u);
 }
 
-// Both bundled recordings still replay in full through open_recording (which
-// checks them first), and every frame's pixels equal our own decoder's.
-TEST_F(OniCheckTest, OurDecoderGivesOpenNI2sPixelsOnEveryFrameOfBothRecordings) {
-  for (const std::string* bytes : {mosd_, synthetic_}) {
-    const bool mosd = bytes == mosd_;
-    SCOPED_TRACE(mosd ? "mosd_scenes.oni" : "synthetic_tabletop.oni");
-    const std::vector<OniRecord> frames = oni_records_of(*bytes, kOniNewData);
-    ASSERT_EQ(frames.size(), mosd ? 62u : 60u);
-    const auto source = open_recording(kRecordingsDir / (mosd ? "mosd_scenes.oni" : "synthetic_tabletop.oni"));
-    ASSERT_EQ(source->frame_count(), frames.size());
-    std::vector<std::uint16_t> ours(640 * 480);
-    for (const OniRecord& frame : frames) {
-      const std::optional<Frame> theirs = source->next({});
-      ASSERT_TRUE(theirs && theirs->depth);
-      const auto payload = as_bytes(*bytes).subspan(frame.offset + frame.fields_size, frame.payload_size);
-      ASSERT_EQ(detail::decode_16zt(payload, ours), std::nullopt);
-      EXPECT_EQ(ours, theirs->depth->depth_mm) << "frame " << theirs->index;
+// OpenNI2's own file player on a recording, in manual playback (each frame on
+// request, none dropped): the reference our reader is held to.
+class OpenNI2Player {
+ public:
+  explicit OpenNI2Player(const std::filesystem::path& path) {
+    stream_.open_device(path.string(), "OpenNI2 cannot open " + path.string());
+    openni::PlaybackControl* playback = stream_.device().getPlaybackControl();
+    if (playback == nullptr) throw Error("OpenNI2 does not play " + path.string());
+    playback->setRepeatEnabled(false);
+    playback->setSpeed(-1.0f);
+    stream_.open_depth_stream();
+    frames_ = playback->getNumberOfFrames(stream_.stream());
+    stream_.start();
+  }
+  int frames() const { return frames_; }
+  std::optional<Frame> next() { return stream_.wait_and_read(30000, {}); }
+
+ private:
+  detail::DepthStream stream_;
+  int frames_ = 0;
+};
+
+// Every frame of `path` from our reader equals OpenNI2's player's: pixels,
+// timestamp, size and fields of view; returns our frames' depth.
+std::vector<std::vector<std::uint16_t>> expect_openni2s_frames(const std::filesystem::path& path, std::size_t expected) {
+  std::vector<std::vector<std::uint16_t>> depth;
+  const auto ours = open_recording(path);
+  EXPECT_EQ(ours->frame_count(), expected);
+  OpenNI2Player theirs(path);
+  EXPECT_EQ(theirs.frames(), static_cast<int>(expected));
+  for (std::size_t i = 0; i < expected; ++i) {
+    const std::optional<Frame> a = ours->next({});
+    const std::optional<Frame> b = theirs.next();
+    if (!(a && a->depth && b && b->depth)) {
+      ADD_FAILURE() << "frame " << i << " missing";
+      break;
     }
-    EXPECT_FALSE(source->next({}).has_value());
+    EXPECT_EQ(a->index, i);
+    EXPECT_EQ(a->timestamp_us, b->timestamp_us) << "frame " << i;
+    EXPECT_EQ(a->depth->width, b->depth->width);
+    EXPECT_EQ(a->depth->height, b->depth->height);
+    EXPECT_EQ(a->depth->horizontal_fov_rad, b->depth->horizontal_fov_rad);
+    EXPECT_EQ(a->depth->vertical_fov_rad, b->depth->vertical_fov_rad);
+    EXPECT_EQ(a->depth->depth_mm, b->depth->depth_mm) << "frame " << i;
+    depth.push_back(a->depth->depth_mm);
+  }
+  EXPECT_FALSE(ours->next({}).has_value());
+  return depth;
+}
+
+// The recording with every 16zT frame stored uncompressed (codec NONE). The records
+// after the first frame move, so every position that names a record (undo
+// positions, the stream's seek table position, the seek table's entries) moves too.
+std::string uncompressed_copy(const std::string& bytes) {
+  const detail::OniRecordingFacts facts = check(bytes);
+  std::vector<std::uint16_t> pixels(std::size_t(facts.width) * facts.height);
+  std::map<std::uint64_t, std::uint64_t> moved{{0, 0}};
+  std::string out = bytes.substr(0, kOniFileHeaderBytes);
+  for (const OniRecord& r : oni_records(bytes)) {
+    moved[r.offset] = out.size();
+    std::string record = bytes.substr(r.offset, r.fields_size);
+    if (r.type == kOniNewData) {
+      EXPECT_EQ(detail::decode_16zt(as_bytes(bytes).subspan(r.offset + r.fields_size, r.payload_size), pixels), std::nullopt);
+      put_u32(record, 16, static_cast<std::uint32_t>(2 * pixels.size()));
+      record.append(reinterpret_cast<const char*>(pixels.data()), 2 * pixels.size());
+    } else {
+      record += bytes.substr(r.offset + r.fields_size, r.payload_size);
+    }
+    out += record;
+  }
+  for (const OniRecord& r : oni_records(out)) {
+    put_u64(out, r.offset + 20, moved.at(get_u64(out, r.offset + 20)));
+    if (r.type == kOniNodeAdded) {
+      const std::size_t after_name = r.offset + 32 + get_u32(out, r.offset + 28);
+      put_u32(out, after_name + 4, get_u32("NONE", 0));
+      put_u64(out, after_name + 28, moved.at(get_u64(out, after_name + 28)));
+    }
+    for (std::size_t e = 0; r.type == kOniSeekTable && e < r.payload_size / 20; ++e) {
+      const std::size_t position = r.offset + r.fields_size + 20 * e + 12;
+      put_u64(out, position, moved.at(get_u64(out, position)));
+    }
+  }
+  EXPECT_EQ(check(out).codec, get_u32("NONE", 0));
+  return out;
+}
+
+// Both bundled recordings replay in full through open_recording, our reader,
+// and every frame equals what OpenNI2's player hands out.
+TEST_F(OniCheckTest, OurReaderGivesOpenNI2sFramesOnEveryFrameOfBothRecordings) {
+  for (const char* name : {"mosd_scenes.oni", "synthetic_tabletop.oni"}) {
+    SCOPED_TRACE(name);
+    expect_openni2s_frames(kRecordingsDir / name, std::string(name) == "mosd_scenes.oni" ? 62u : 60u);
+  }
+}
+
+// The same recording stored uncompressed replays with the same pixels, as from OpenNI2.
+TEST_F(OniCheckTest, AnUncompressedRecordingGivesTheSameFramesAsOpenNI2s) {
+  const std::filesystem::path dir = scratch_dir("oni_check");
+  write_bytes(dir / "compressed.oni", recording());
+  write_bytes(dir / "uncompressed.oni", uncompressed_copy(recording()));
+  EXPECT_EQ(expect_openni2s_frames(dir / "uncompressed.oni", 62), expect_openni2s_frames(dir / "compressed.oni", 62));
+}
+
+// Depth in 100 um units comes out in whole millimetres, rounded, as from OpenNI2
+// through DepthStream.
+TEST_F(OniCheckTest, DepthIn100umUnitsIsRoundedToMillimetresAsFromOpenNI2) {
+  const std::filesystem::path dir = scratch_dir("oni_check");
+  std::string bytes = recording();
+  write_bytes(dir / "mm.oni", bytes);
+  put_u64(bytes, oni_property(bytes, "oniPixelFormat").property_data, 101);
+  write_bytes(dir / "100um.oni", bytes);
+  const auto millimetres = expect_openni2s_frames(dir / "mm.oni", 62);
+  const auto rounded = expect_openni2s_frames(dir / "100um.oni", 62);
+  ASSERT_EQ(rounded.size(), millimetres.size());
+  for (std::size_t i = 0; i < rounded.size(); ++i) {
+    for (std::size_t p = 0; p < rounded[i].size(); p += 997) {
+      ASSERT_EQ(rounded[i][p], (millimetres[i][p] + 5) / 10) << "frame " << i << " pixel " << p;
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "depth_units.hpp"
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/error.hpp"
 
@@ -164,9 +165,7 @@ Frame DepthStream::to_frame(const openni::VideoFrameRef& frame, std::uint64_t nu
   for (std::uint32_t row = 0; row < image.height; ++row) {
     std::memcpy(&image.depth_mm[std::size_t{row} * image.width], bytes + std::size_t{row} * layout.stride_bytes, row_bytes);
   }
-  if (layout.pixel_format == openni::PIXEL_FORMAT_DEPTH_100_UM) {
-    for (std::uint16_t& d : image.depth_mm) d = static_cast<std::uint16_t>((d + 5) / 10);
-  }
+  to_millimetres(image.depth_mm, layout.pixel_format);
   Frame out;
   out.index = static_cast<std::uint64_t>(frame.getFrameIndex());
   out.timestamp_us = frame.getTimestamp();

@@ -1,16 +1,16 @@
-// Structural check of .oni recordings before OpenNI2 opens them (oni_check.hpp).
+// Structural check of .oni recordings, made when a replay opens one (oni_check.hpp;
+// the frames are then read by oni_reader.cpp). It accepts what OpenNI2's own player
+// reads safely, so a recording we replay is one OpenNI2 would replay too.
 //
-// Why check instead of isolating OpenNI2 in a child process: OpenNI2's player
-// (Source/Drivers/OniFile/PlayerNode.cpp) reads a record's fields into a fixed
+// What that player does not check: it (Source/Drivers/OniFile/PlayerNode.cpp) reads a record's fields into a fixed
 // buffer without comparing the fields size to it (ReadRecordFields), allocates
 // "max node id + 1" entries from the header (OpenStream), dereferences property
 // data without size checks (IntPropRecord::GetValue, the xnFOV property), decodes
 // 16zT data with table indices and an end test it never bounds
 // (XnStreamUncompressDepth16ZWithEmbTable loops "while (pInput != pInputEnd)"),
 // and decodes with a null codec for a stream declared without one. Every one of
-// those is a fact about the bytes, so checking the bytes first makes the crash
-// impossible rather than contained, costs one linear pass (about a millisecond a
-// frame), keeps replay in one process, and is testable and fuzzable on its own.
+// those is a fact about the bytes, checked here in one linear pass (about a
+// millisecond a frame), testable and fuzzable on its own.
 // The facts below come from OpenNI2's public source: DataRecords.h/.cpp,
 // PlayerNode.cpp, PlayerDevice.cpp, PlayerSource.cpp, PlayerStream.cpp,
 // Formats/XnCodecIDs.h and XnStreamCompression.cpp in Source/Drivers/OniFile/,
@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "lccp/error.hpp"
+#include "depth_units.hpp"
 #include "oni_format.hpp"
 
 namespace lccp::detail {
@@ -53,8 +54,6 @@ constexpr std::uint32_t codec_id(char c1, char c2, char c3, char c4) {  // XN_CO
 constexpr std::uint32_t kCodec16zT = codec_id('1', '6', 'z', 'T');
 constexpr std::uint32_t kCodecNone = codec_id('N', 'O', 'N', 'E');
 constexpr std::uint32_t kNodeTypeDepth = 2;  // XN_NODE_TYPE_DEPTH
-constexpr int kDepth1mm = 100;               // ONI_PIXEL_FORMAT_DEPTH_1_MM
-constexpr int kDepth100um = 101;             // ONI_PIXEL_FORMAT_DEPTH_100_UM
 
 // An inconsistency; turned into one lccp::Error line naming the file.
 struct Corrupt {
@@ -121,8 +120,8 @@ struct DepthNode {
   std::optional<std::uint64_t> required_frame_size;
   bool has_max_depth = false;
   bool has_cropping = false;
-  std::vector<std::uint64_t> frame_offsets;
-  std::vector<std::uint64_t> frame_timestamps;
+  double horizontal_fov = 0, vertical_fov = 0;
+  std::vector<OniFrameRecord> frames;
   std::optional<RecordHeader> seek_table;
 };
 
@@ -205,6 +204,8 @@ class Decoder16zT {
 };
 
 }  // namespace
+
+bool is_16zt(std::uint32_t codec) { return codec == kCodec16zT; }
 
 std::optional<std::string> decode_16zt(std::span<const std::uint8_t> in, std::span<std::uint16_t> out) {
   return Decoder16zT(in, out).run();
@@ -395,8 +396,8 @@ class OniChecker {
       check_mode(node);
     } else if (general && name == "xnFOV") {
       expect_size(name, size, 16);
-      check_fov(data.f64(), "horizontal");
-      check_fov(data.f64(), "vertical");
+      node.horizontal_fov = check_fov(data.f64(), "horizontal");
+      node.vertical_fov = check_fov(data.f64(), "vertical");
     } else if (general && name == "xnCropping") {
       expect_size(name, size, 12);
       if (data.u32() != 0) corrupt("cropped depth (xnCropping enabled) not supported");
@@ -418,8 +419,9 @@ class OniChecker {
     if (size != expected) corrupt("property '" + name + "' of " + str(size) + " bytes, expected " + str(expected));
   }
 
-  static void check_fov(double radians, const char* which) {
+  static double check_fov(double radians, const char* which) {
     if (!(radians > 0.0 && radians < std::numbers::pi)) corrupt(std::string(which) + " field of view outside (0, pi)");
+    return radians;
   }
 
   static void check_mode(const DepthNode& node) {
@@ -454,21 +456,20 @@ class OniChecker {
 
   void new_data(const RecordHeader& r) {
     DepthNode& node = live_node(r);
-    const std::uint64_t frame = node.frame_offsets.size();
+    const std::uint64_t frame = node.frames.size();
     try {
       Cursor fields(r.fields);
       const std::uint64_t timestamp = fields.u64();
       const std::uint32_t number = fields.u32();
       if (!fields.done()) corrupt("NewData record with " + str(r.fields.size()) + " bytes of fields");
       if (!node.data_begun) corrupt("depth data before its NodeDataBegin record");
-      check_undo(r, node.frame_offsets.empty() ? 0 : node.frame_offsets.back());
+      check_undo(r, node.frames.empty() ? 0 : node.frames.back().record_offset);
       if (number != frame + 1) corrupt("frame number " + str(number) + ", expected " + str(frame + 1));
       if (frame >= node.declared_frames) corrupt("more frames than the " + str(node.declared_frames) + " declared");
       if (timestamp > node.max_timestamp || timestamp > global_max_timestamp_) corrupt("timestamp past the declared maximum");
-      if (!node.frame_timestamps.empty() && timestamp < node.frame_timestamps.back()) corrupt("timestamp goes backwards");
+      if (!node.frames.empty() && timestamp < node.frames.back().timestamp_us) corrupt("timestamp goes backwards");
       check_payload(node, r.payload);
-      node.frame_offsets.push_back(r.offset);
-      node.frame_timestamps.push_back(timestamp);
+      node.frames.push_back({r.offset, r.fields_end(), r.payload_size, timestamp});
     } catch (Corrupt& c) {
       c.text = "frame " + str(frame) + ": " + c.text;
       throw;
@@ -520,7 +521,7 @@ class OniChecker {
   OniRecordingFacts finish() {
     if (!node_) corrupt("no depth stream");
     const DepthNode& node = *node_;
-    const std::uint64_t frames = node.frame_offsets.size();
+    const std::uint64_t frames = node.frames.size();
     if (frames == 0) corrupt("holds no depth frames");
     if (frames != node.declared_frames) {
       corrupt("declares " + str(node.declared_frames) + " frames but holds " + str(frames) + " (unfinished recording?)");
@@ -532,6 +533,9 @@ class OniChecker {
     facts.height = static_cast<int>(node.height);
     facts.pixel_format = node.pixel_format;
     facts.codec = node.codec;
+    facts.horizontal_fov_rad = static_cast<float>(node.horizontal_fov);
+    facts.vertical_fov_rad = static_cast<float>(node.vertical_fov);
+    facts.frame_records = node.frames;
     return facts;
   }
 
@@ -543,7 +547,7 @@ class OniChecker {
       corrupt(where + "the stream's seek table position is not its SeekTable record");
     }
     const auto payload = node.seek_table->payload;
-    const std::size_t frames = node.frame_offsets.size();
+    const std::size_t frames = node.frames.size();
     if (payload.size() != (frames + 1) * kSeekEntryBytes) {
       corrupt(where + str(payload.size()) + " bytes for " + str(frames) + " frames");
     }
@@ -552,7 +556,7 @@ class OniChecker {
       const std::uint64_t timestamp = entry.u64();
       entry.u32();  // configuration id
       const std::uint64_t position = entry.u64();
-      if (timestamp != node.frame_timestamps[i - 1] || position != node.frame_offsets[i - 1]) {
+      if (timestamp != node.frames[i - 1].timestamp_us || position != node.frames[i - 1].record_offset) {
         corrupt(where + "entry " + str(i) + " does not match frame " + str(i - 1));
       }
     }

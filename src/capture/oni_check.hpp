@@ -1,7 +1,8 @@
 #pragma once
-// Our own structural check of an .oni recording, made before OpenNI2's file
-// driver (libOniFile) sees the file: that driver trusts every size and index in
-// the file, so a corrupt recording can make it corrupt its heap or spin.
+// Our own structural check of an .oni recording, made when a replay opens it
+// (oni_reader.hpp). It accepts what OpenNI2's file driver (libOniFile) reads
+// safely: that driver trusts every size and index in the file, so a corrupt
+// recording can make it corrupt its heap or spin.
 // The record layout, from OpenNI2's public source, is in oni_format.hpp.
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace lccp::detail {
 
@@ -21,12 +23,23 @@ namespace lccp::detail {
 inline constexpr int kMaxOniDepthSide = 4096;
 inline constexpr std::uint64_t kOniPlayerDataMaxBytes = 1600ull * 1200 * 3;
 
+// Where one depth frame's NewData record lies in the file.
+struct OniFrameRecord {
+  std::uint64_t record_offset = 0;
+  std::uint64_t payload_offset = 0;  // the frame's pixels, 16zT or uncompressed
+  std::uint32_t payload_size = 0;
+  std::uint64_t timestamp_us = 0;    // the sensor's timestamp, as OpenNI2's player hands it on
+};
+
 struct OniRecordingFacts {
   std::uint32_t frames = 0;
   int width = 0;
   int height = 0;
   int pixel_format = 0;     // openni::PixelFormat: 100 (1 mm) or 101 (100 um)
   std::uint32_t codec = 0;  // XnCodecID: '16zT' or 'NONE' as a little-endian u32
+  float horizontal_fov_rad = 0;  // the xnFOV property; 0 (unknown) without one, as OpenNI2 reports it
+  float vertical_fov_rad = 0;
+  std::vector<OniFrameRecord> frame_records;  // `frames` of them, in file order
 };
 
 // Walks every record of the recording in `bytes` and decodes every depth frame
@@ -37,6 +50,9 @@ OniRecordingFacts check_oni_recording(std::span<const std::uint8_t> bytes, std::
 
 // The same for a file, mapped read-only. Throws lccp::Error naming the path.
 OniRecordingFacts check_oni_file(const std::filesystem::path& path);
+
+// Whether `codec` (OniRecordingFacts::codec) is 16zT; otherwise frames are uncompressed.
+bool is_16zt(std::uint32_t codec);
 
 // Decodes one 16zT frame (XnStreamCompression.cpp, XnStreamUncompressDepth16ZWithEmbTable)
 // into exactly `out.size()` pixels. Returns nullopt on success, or what is wrong:

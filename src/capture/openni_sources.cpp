@@ -10,7 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "depth_stream.hpp"
-#include "oni_check.hpp"
+#include "oni_reader.hpp"
 #include "lccp/capture/openni_session.hpp"
 #include "lccp/error.hpp"
 
@@ -29,53 +29,26 @@ bool sleep_until(Clock::time_point deadline, std::stop_token stop) {
 class RecordingSource final : public FrameSource {
  public:
   RecordingSource(const std::filesystem::path& path, const ReplayOptions& options)
-      : path_(path), options_(options) {
-    check_recording_path(path);
-    // OpenNI2's file driver trusts the file's sizes and indices: ours are checked
-    // first, every record and every frame (oni_check.cpp says why this, not a child process).
-    const detail::OniRecordingFacts facts = detail::check_oni_file(path);
-    initialize_openni();
-    try {
-      stream_.open_device(path.string(), "");
-    } catch (const Error&) {  // OpenNI2 says only "Couldn't open device"
-      throw Error("cannot open " + path.string() + ": not a readable .oni recording (truncated or corrupt?)");
-    }
-    openni::PlaybackControl* playback = stream_.device().getPlaybackControl();
-    if (playback == nullptr) throw Error(path.string() + " is not an .oni recording");
-    playback->setRepeatEnabled(false);
-    playback->setSpeed(-1.0f);  // manual: each frame released on request, none dropped
-    stream_.open_depth_stream();
-    total_ = static_cast<std::uint64_t>(std::max(0, playback->getNumberOfFrames(stream_.stream())));
-    if (total_ != facts.frames) {
-      throw Error(path.string() + ": OpenNI2 counts " + std::to_string(total_) + " depth frames where the file holds " +
-                  std::to_string(facts.frames));
-    }
-    stream_.start();
-  }
+      : reader_(checked_recording_path(path)), options_(options) {}
 
   std::optional<Frame> next(std::stop_token stop) override {
-    if (delivered_ >= total_) return std::nullopt;
-    std::optional<Frame> frame = stream_.wait_and_read(options_.stall_timeout_ms, stop);
-    if (!frame) {
-      if (stop.stop_requested()) return std::nullopt;
-      throw Error("recording " + path_.string() + " ended after " + std::to_string(delivered_) + " of " +
-                  std::to_string(total_) + " frames (truncated or corrupt?)");
-    }
-    frame->index = delivered_++;
-    if (options_.realtime && !pace(*frame, stop)) return std::nullopt;
-    frame->captured = Clock::now();
+    if (delivered_ >= reader_.frame_count() || stop.stop_requested()) return std::nullopt;
+    Frame frame = reader_.read(delivered_++);
+    if (options_.realtime && !pace(frame, stop)) return std::nullopt;
+    frame.captured = Clock::now();
     return frame;
   }
 
-  std::optional<std::uint64_t> frame_count() const override { return total_; }
+  std::optional<std::uint64_t> frame_count() const override { return reader_.frame_count(); }
   bool is_live() const override { return options_.realtime; }
 
  private:
-  static void check_recording_path(const std::filesystem::path& path) {
+  static const std::filesystem::path& checked_recording_path(const std::filesystem::path& path) {
     std::error_code error;
     if (!std::filesystem::exists(path, error)) throw Error("cannot open " + path.string() + ": no such file");
     if (!std::filesystem::is_regular_file(path, error)) throw Error(path.string() + " is not a file");
     if (path.extension() != ".oni") throw Error(path.string() + " is not an .oni recording (expected the .oni suffix)");
+    return path;
   }
 
   // Waits until the frame is due by the recording's clock (a live sensor's pace).
@@ -88,10 +61,8 @@ class RecordingSource final : public FrameSource {
     return sleep_until(replay_start_ + offset, std::move(stop));
   }
 
-  std::filesystem::path path_;
+  detail::OniReader reader_;
   ReplayOptions options_;
-  detail::DepthStream stream_;
-  std::uint64_t total_ = 0;
   std::uint64_t delivered_ = 0;
   std::optional<std::uint64_t> first_timestamp_us_;
   Clock::time_point replay_start_{};

@@ -1,5 +1,6 @@
 #pragma once
-// Frame sources through OpenNI2: .oni recordings and live devices.
+// Frame sources for OpenNI2: live devices through OpenNI2, and .oni recordings
+// (OpenNI2's file format) through our own reader.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -14,16 +15,15 @@ namespace lccp {
 
 struct ReplayOptions {
   bool realtime = false;                   // pace frames by the recording's timestamps
-  int stall_timeout_ms = 5000;             // no frame for this long before the end: corrupt file
 };
 
-// Every depth frame of an .oni recording, in order, none dropped (OpenNI2's
-// manual playback mode, PlaybackControl::setSpeed(-1)); the end of the file is
-// detected by the frame count, never by blocking: in manual mode OpenNI2 sends
-// no end-of-stream event, a read after the last frame would wait forever.
-// Frame::index counts from 0. Throws lccp::Error naming
-// the file when it is missing, not an .oni recording, or has no depth stream;
-// next() throws when the recording stops short of its frame count.
+// Every depth frame of an .oni recording (as OpenNI2's Recorder writes them: one
+// depth stream, 16zT or uncompressed), in order, none dropped. The whole file is
+// checked when it is opened, then each frame is read and decoded by next() on
+// the caller's thread; OpenNI2's file player is not used (src/capture/oni_reader.hpp
+// says why). Frame::index counts from 0. Throws lccp::Error naming the file when
+// it is missing, not an .oni recording, damaged anywhere, or has no depth stream;
+// next() throws when the file was cut or changed after it was opened.
 std::unique_ptr<FrameSource> open_recording(const std::filesystem::path& path, const ReplayOptions& options = {});
 
 struct DepthMode {
