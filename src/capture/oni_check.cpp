@@ -159,12 +159,16 @@ class Decoder16zT {
     problem_ = std::move(text);
     return false;
   }
+  // The failures, out of line: emit runs once or twice per pixel.
+  [[gnu::noinline]] bool index_past_table() { return fail("16zT index " + str(index_) + " past its table"); }
+  [[gnu::noinline]] bool too_many_pixels() { return fail("16zT data decodes to more than " + str(out_.size()) + " pixels"); }
   bool emit(std::size_t count) {
-    if (2 * std::size_t{index_} >= table_.size()) return fail("16zT index " + str(index_) + " past its table");
-    if (count > out_.size() - written_) return fail("16zT data decodes to more than " + str(out_.size()) + " pixels");
+    if (2 * std::size_t{index_} >= table_.size()) [[unlikely]] return index_past_table();
+    if (count > out_.size() - written_) [[unlikely]] return too_many_pixels();
     const auto value = static_cast<std::uint16_t>(table_[2 * index_] | table_[2 * index_ + 1] << 8);
-    std::fill_n(out_.begin() + static_cast<std::ptrdiff_t>(written_), count, value);
+    std::uint16_t* out = out_.data() + written_;
     written_ += count;
+    for (std::size_t i = 0; i < count; ++i) out[i] = value;
     return true;
   }
   void add(int delta) { index_ = static_cast<std::uint16_t>(index_ - delta); }  // u16 arithmetic, as the player's
