@@ -255,6 +255,21 @@ TEST_F(RecordingTest, TruncatedRecordingIsRefusedNamingTheFile) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
 }
 
+// A replay is read on the caller's thread: opening, reading and closing one start
+// no thread (OpenNI2's file player ran one, whose stream walk raced a close).
+TEST_F(RecordingTest, AReplayStartsNoThread) {
+  const auto threads = [] {
+    return std::distance(fs::directory_iterator("/proc/self/task"), fs::directory_iterator{});
+  };
+  const auto before = threads();
+  {
+    const auto source = open_recording(recording());
+    ASSERT_TRUE(source->next({}).has_value());
+    EXPECT_EQ(threads(), before);
+  }
+  EXPECT_EQ(threads(), before);
+}
+
 // The file is checked when it is opened and read frame by frame after: a file cut
 // while it is replayed ends the replay with one line naming it and the frame.
 TEST_F(RecordingTest, RecordingCutWhileReplayingFailsNamingTheFrame) {
