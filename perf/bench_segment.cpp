@@ -219,7 +219,7 @@ void run_case(benchmark::State& state, Case& c, const std::vector<Frame>& frames
     }
   }
 
-  std::vector<double> sums(c.pcl ? 4 : 8, 0.0);
+  std::vector<double> sums(c.pcl ? 4 : lccp::kLccpStageCount, 0.0);
   double supervoxels = 0, segments = 0;
   for (auto _ : state) {
     const Frame& frame = frames[c.next_frame++ % frames.size()];
@@ -241,7 +241,7 @@ void run_case(benchmark::State& state, Case& c, const std::vector<Frame>& frames
         time.total_ms = ms_since(start);
         benchmark::DoNotOptimize(r.labels.data());
         const lccp::StageTimes& t = r.times;
-        for (std::size_t i = 0; i < lccp::kStageCount; ++i) sums[i] += t.ms[i];
+        for (std::size_t i = 0; i < lccp::kLccpStageCount; ++i) sums[i] += t.ms[i];
         supervoxels += r.supervoxel_count;
         segments += r.segment_count;
       }
@@ -257,9 +257,9 @@ void run_case(benchmark::State& state, Case& c, const std::vector<Frame>& frames
   const auto avg = [](double v) { return Counter(v, Counter::kAvgIterations); };
   static constexpr const char* kPclNames[] = {"pcl_supervoxels_ms", "pcl_lccp_ms", "pcl_labels_ms",
                                               "pcl_convert_ms"};
-  static constexpr const char* kOurNames[] = {"voxelize_ms",  "normals_ms",  "seeds_ms", "growth_ms",
-                                              "adjacency_ms", "classify_ms", "components_ms", "filter_ms"};
-  for (std::size_t i = 0; i < sums.size(); ++i) state.counters[c.pcl ? kPclNames[i] : kOurNames[i]] = avg(sums[i]);
+  for (std::size_t i = 0; i < sums.size(); ++i) {
+    state.counters[c.pcl ? std::string(kPclNames[i]) : std::string(lccp::kStages[i].name) + "_ms"] = avg(sums[i]);
+  }
   state.counters["supervoxels"] = avg(supervoxels);
   state.counters["segments"] = avg(segments);
 }
