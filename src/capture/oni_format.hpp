@@ -1,7 +1,8 @@
 #pragma once
-// The .oni record layout, read in one place: by the structural check made before
-// OpenNI2 opens a recording (oni_check.cpp) and by `lccp record`, which counts the
-// frames openni::Recorder has written and cuts a finished file (recorder.cpp).
+// The .oni record layout, read in one place: by the structural check a replay makes
+// when it opens a recording (oni_check.cpp, whose frame positions our reader then
+// uses) and by `lccp record`, which counts the frames openni::Recorder has written
+// and cuts a finished file (recorder.cpp).
 //
 // From OpenNI2's public source (Source/Drivers/OniFile/DataRecords.h, PlayerNode.cpp;
 // Source/Core/OniRecorder.cpp, OniDataRecords.cpp):
