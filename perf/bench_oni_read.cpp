@@ -5,14 +5,12 @@
 // work per frame. Usage: bench_oni_read [--benchmark_* flags] (recording: mosd_scenes.oni).
 #include <benchmark/benchmark.h>
 
-#include <OpenNI.h>
-
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 
-#include "../src/capture/depth_stream.hpp"
+#include "../tests/openni2_player.hpp"
 #include "lccp/capture/openni_sources.hpp"
 #include "lccp/process.hpp"
 
@@ -41,24 +39,16 @@ void BM_ReplayOpenNI2Player(benchmark::State& state) {
   std::int64_t frames = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    auto stream = std::make_unique<lccp::detail::DepthStream>();
-    stream->open_device(kRecording.string(), "OpenNI2 cannot open the recording");
-    openni::PlaybackControl* playback = stream->device().getPlaybackControl();
-    if (playback == nullptr) throw std::runtime_error("OpenNI2 does not play the recording");
-    playback->setRepeatEnabled(false);
-    playback->setSpeed(-1.0f);
-    stream->open_depth_stream();
-    const int total = playback->getNumberOfFrames(stream->stream());
-    stream->start();
+    auto player = std::make_unique<lccp::test::OpenNI2Player>(kRecording);
     state.ResumeTiming();
-    for (int i = 0; i < total; ++i) {
-      std::optional<lccp::Frame> frame = stream->wait_and_read(30000, {});
+    for (int i = 0; i < player->frames(); ++i) {
+      std::optional<lccp::Frame> frame = player->next();
       if (!frame) throw std::runtime_error("OpenNI2's player stopped early");
       benchmark::DoNotOptimize(frame->depth->depth_mm.data());
       ++frames;
     }
     state.PauseTiming();
-    stream.reset();
+    player.reset();
     state.ResumeTiming();
   }
   state.SetItemsProcessed(frames);

@@ -20,6 +20,7 @@
 #include "lccp/capture/openni_sources.hpp"
 #include "lccp/error.hpp"
 #include "oni_test_bytes.hpp"
+#include "openni2_player.hpp"
 #include "test_files.hpp"
 
 namespace lccp {
@@ -73,28 +74,6 @@ TEST_F(OniCheckTest, BundledRecordingsPass) {
 TEST_F(OniCheckTest, BytesAfterTheEndRecordAreNeverRead) {
   EXPECT_EQ(check(recording() + std::string(1000, '\xab')).frames, 62u);
 }
-
-// OpenNI2's own file player on a recording, in manual playback (each frame on
-// request, none dropped): the reference our reader is held to.
-class OpenNI2Player {
- public:
-  explicit OpenNI2Player(const std::filesystem::path& path) {
-    stream_.open_device(path.string(), "OpenNI2 cannot open " + path.string());
-    openni::PlaybackControl* playback = stream_.device().getPlaybackControl();
-    if (playback == nullptr) throw Error("OpenNI2 does not play " + path.string());
-    playback->setRepeatEnabled(false);
-    playback->setSpeed(-1.0f);
-    stream_.open_depth_stream();
-    frames_ = playback->getNumberOfFrames(stream_.stream());
-    stream_.start();
-  }
-  int frames() const { return frames_; }
-  std::optional<Frame> next() { return stream_.wait_and_read(30000, {}); }
-
- private:
-  detail::DepthStream stream_;
-  int frames_ = 0;
-};
 
 // Every frame of `path` from our reader equals OpenNI2's player's: pixels,
 // timestamp, size and fields of view; returns our frames' depth.
