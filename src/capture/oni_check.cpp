@@ -2,9 +2,10 @@
 // the frames are then read by oni_reader.cpp). It accepts what OpenNI2's own player
 // reads safely, so a recording we replay is one OpenNI2 would replay too.
 //
-// What that player does not check: it (Source/Drivers/OniFile/PlayerNode.cpp) reads a record's fields into a fixed
-// buffer without comparing the fields size to it (ReadRecordFields), allocates
-// "max node id + 1" entries from the header (OpenStream), dereferences property
+// What that player (Source/Drivers/OniFile/PlayerNode.cpp) does not check: it reads
+// a record's fields into a fixed buffer without comparing the fields size to it
+// (ReadRecordFields), allocates "max node id + 1" entries from the header
+// (OpenStream), dereferences property
 // data without size checks (IntPropRecord::GetValue, the xnFOV property), decodes
 // 16zT data with table indices and an end test it never bounds
 // (XnStreamUncompressDepth16ZWithEmbTable loops "while (pInput != pInputEnd)"),
