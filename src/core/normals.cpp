@@ -38,9 +38,9 @@ std::vector<Moments> two_ring_moments(const VoxelGrid& grid, const std::vector<M
 // Least-variance direction of the neighbourhood, oriented toward the sensor at
 // the origin; with fewer than three distinct centroids or a line, the direction
 // toward the sensor itself.
-Eigen::Vector3f pca_normal(const Moments& m, const Eigen::Vector3f& centroid) {
+Eigen::Vector3f pca_normal(double count, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& centroid) {
   const Eigen::Vector3f toward_sensor = -centroid.normalized();
-  return detail::plane_normal(m, toward_sensor).value_or(toward_sensor);
+  return detail::plane_normal(count, covariance, toward_sensor).value_or(toward_sensor);
 }
 
 // Mean point normals as given (multi-view clouds: oriented per view, not
@@ -53,30 +53,30 @@ std::vector<Eigen::Vector3f> given_normals(const VoxelGrid& grid) {
   return normals;
 }
 
-// A neighbourhood's least-squares plane: its centre, its normal, the variance
-// of the neighbourhood along that normal (m^2) and that variance's share of the
-// total (the surface variation: 0 on a plane, larger across a crease).
+// A neighbourhood's least-squares plane: its centre, its normal, how far from
+// it a voxel centroid may lie and still be on it (m), and the variance along
+// the normal as a share of the total (the surface variation: 0 on a plane,
+// larger across a crease).
 struct LocalPlane {
   Eigen::Vector3f centre;
   Eigen::Vector3f normal;
-  float residual_m2 = 0;
+  float tolerance_m = 0;
   float variation = 0;
 };
 
+// The tolerance is two standard deviations of the fit, plus 0.1 mm for float
+// rounding (the coarsest spacing LimitsConfig allows is 61 um).
 LocalPlane local_plane(const Moments& m, const Eigen::Vector3f& centroid) {
-  const Eigen::Vector3f normal = pca_normal(m, centroid);
   const Eigen::Matrix3d covariance = detail::covariance_of(m);
+  const Eigen::Vector3f normal = pca_normal(m(0), covariance, centroid);
   const Eigen::Vector3d n = normal.cast<double>();
   const double residual = std::max(0.0, n.dot(covariance * n));
-  return {(m.segment<3>(1) / m[0]).cast<float>(), normal, static_cast<float>(residual),
+  return {(m.segment<3>(1) / m[0]).cast<float>(), normal, 2.0f * std::sqrt(static_cast<float>(residual)) + 1e-4f,
           static_cast<float>(residual / std::max(covariance.trace(), 1e-30))};
 }
 
-// Whether a voxel centroid lies on a neighbourhood's plane: within two standard
-// deviations of the fit, plus 0.1 mm for float rounding (the coarsest spacing
-// LimitsConfig allows is 61 um).
 bool lies_on(const LocalPlane& plane, const Eigen::Vector3f& x) {
-  return std::abs(plane.normal.dot(x - plane.centre)) <= 2.0f * std::sqrt(plane.residual_m2) + 1e-4f;
+  return std::abs(plane.normal.dot(x - plane.centre)) <= plane.tolerance_m;
 }
 
 // Crease-preserving normals (a departure from the paper, docs/ARCHITECTURE.md).
@@ -108,7 +108,10 @@ std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const
     return crease_preserving(grid, planes);
   }
   std::vector<Eigen::Vector3f> normals(grid.size());
-  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { normals[v] = pca_normal(neighbourhoods[v], grid.centroids[v]); });
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
+    const Moments& m = neighbourhoods[v];
+    normals[v] = pca_normal(m(0), detail::covariance_of(m), grid.centroids[v]);
+  });
   return normals;
 }
 

@@ -63,8 +63,9 @@ std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a) {
   return widest->normalized();
 }
 
-std::optional<Eigen::Vector3f> plane_normal(const Moments& m, const Eigen::Vector3f& reference) {
-  const auto direction = m(0) >= 3.0 ? least_eigenvector(covariance_of(m)) : std::nullopt;
+std::optional<Eigen::Vector3f> plane_normal(double count, const Eigen::Matrix3d& covariance,
+                                            const Eigen::Vector3f& reference) {
+  const auto direction = count >= 3.0 ? least_eigenvector(covariance) : std::nullopt;
   if (!direction) return std::nullopt;
   const Eigen::Vector3f normal = direction->cast<float>();
   return normal.dot(reference) < 0.0f ? Eigen::Vector3f(-normal) : normal;

@@ -17,8 +17,10 @@ Eigen::Matrix3d covariance_of(const Moments& m);
 // semi-definite 3x3 matrix; empty when that eigenvalue is not simple.
 std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a);
 
-// Normal of the best-fit plane through the points, oriented to agree with
-// `reference`; empty for fewer than three points or a degenerate set.
-std::optional<Eigen::Vector3f> plane_normal(const Moments& m, const Eigen::Vector3f& reference);
+// Normal of the best-fit plane through `count` points of the given covariance
+// (covariance_of), oriented to agree with `reference`; empty for fewer than
+// three points or a degenerate set.
+std::optional<Eigen::Vector3f> plane_normal(double count, const Eigen::Matrix3d& covariance,
+                                            const Eigen::Vector3f& reference);
 
 }  // namespace lccp::detail
