@@ -168,6 +168,21 @@ TEST(SupportPlane, WithoutUpTheBiggestPlaneWins) {
   EXPECT_LT(marked(*support, s, kTablePoint), count_part(s, kTablePoint) / 10);
 }
 
+TEST(SupportPlane, SkippedPointsTakeNoPart) {
+  const Scene s = table_and_wall();
+  std::vector<std::uint8_t> skip(s.cloud.size(), 0);
+  for (std::size_t i = 0; i < skip.size(); ++i) skip[i] = s.part[i] == kWallPoint;
+  const auto support = find_support_plane(s.cloud, table_config(), skip);
+  ASSERT_TRUE(support.has_value());
+  EXPECT_LT(angle_deg(support->plane.normal, s.table_normal), 0.5);
+  EXPECT_EQ(marked(*support, s, kWallPoint), 0u);
+  EXPECT_EQ(marked(*support, s, kTablePoint), count_part(s, kTablePoint));
+  // The inlier share counts the points that take part: the table is most of them.
+  SupportPlaneConfig config = table_config();
+  config.min_inlier_share = 0.6f;
+  EXPECT_TRUE(find_support_plane(s.cloud, config, skip).has_value());
+}
+
 TEST(SupportPlane, UpTooFarFromEveryPlaneGivesNothing) {
   const Scene s = table_with_boxes();
   // up perpendicular to the table normal: no plane of the scene is within 30 deg of it

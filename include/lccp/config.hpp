@@ -2,6 +2,7 @@
 // Parameters of the LCCP method. Defaults are the paper's parameter set P1
 // (Table II, beta_thresh 10 deg); every field carries its unit in its name.
 #include <cstdint>
+#include <limits>
 #include <optional>
 
 namespace lccp {
@@ -61,6 +62,24 @@ struct SupportPlaneConfig {
   std::uint32_t seed = 1;             // RANSAC random seed: fixed, so every run finds the same plane
 };
 
+// The region of interest: an axis-aligned box in the cloud's frame (metres).
+// Points outside it are left out before anything else and get label 0, as
+// points without depth do; the support plane is sought among the rest. In a
+// camera frame z is the depth along the optical axis, so min_z_m and max_z_m
+// are a depth range. Default: all of space. (Like PCL's pcl::CropBox, and
+// pcl::PassThrough on one axis.)
+struct RegionConfig {
+  static constexpr float kUnbounded = std::numeric_limits<float>::infinity();
+  float min_x_m = -kUnbounded, max_x_m = kUnbounded;
+  float min_y_m = -kUnbounded, max_y_m = kUnbounded;
+  float min_z_m = -kUnbounded, max_z_m = kUnbounded;
+
+  bool bounded() const;  // narrower than all of space on some axis
+  bool contains(float x, float y, float z) const {
+    return x >= min_x_m && x <= max_x_m && y >= min_y_m && y <= max_y_m && z >= min_z_m && z <= max_z_m;
+  }
+};
+
 struct FilterConfig {
   std::uint32_t n_filter_supervoxels = 3;  // segments of <= this many supervoxels merge (A.4)
 };
@@ -78,6 +97,7 @@ struct LimitsConfig {
 };
 
 struct LccpConfig {
+  RegionConfig region;
   SupportPlaneConfig support;
   VoxelConfig voxels;
   NormalConfig normals;

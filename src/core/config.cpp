@@ -43,7 +43,22 @@ void validate_support(const SupportPlaneConfig& s) {
   require(s.iterations > 0 && s.iterations <= 100000u, "support_iterations", "in [1, 100000]", s.iterations);
 }
 
+void validate_region(const RegionConfig& r) {
+  const auto axis = [](float low, float high, const char* min_key) {
+    require(!std::isnan(low) && !std::isnan(high) && low < high, min_key,
+            "below its max key (a number; inf and -inf: unbounded)", low);
+  };
+  axis(r.min_x_m, r.max_x_m, "region_min_x_m");
+  axis(r.min_y_m, r.max_y_m, "region_min_y_m");
+  axis(r.min_z_m, r.max_z_m, "region_min_z_m");
+}
+
 }  // namespace
+
+bool RegionConfig::bounded() const {
+  return std::isfinite(min_x_m) || std::isfinite(max_x_m) || std::isfinite(min_y_m) || std::isfinite(max_y_m) ||
+         std::isfinite(min_z_m) || std::isfinite(max_z_m);
+}
 
 void validate(const SceneConfig& c) {
   validate(c.objects);
@@ -59,6 +74,7 @@ void validate(const SceneConfig& c) {
 }
 
 void validate(const LccpConfig& c) {
+  validate_region(c.region);
   validate_support(c.support);
   require(std::isfinite(c.voxels.voxel_size_m) && c.voxels.voxel_size_m > 0.0f, "voxel_size_m", "> 0",
           c.voxels.voxel_size_m);

@@ -23,13 +23,30 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
   return labels;
 }
 
-// Stage 0 (Sec. III.C): the support plane's points are left out of the segmentation.
+// Points outside the region of interest are left out of everything that follows.
+void keep_region(SegmentationWork& w, const RegionConfig& region) {
+  if (!region.bounded()) return;
+  if (w.skip.empty()) w.skip.assign(w.cloud.size(), 0);
+  detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) {
+    const Eigen::Vector3f& p = w.cloud.points[i];
+    w.skip[i] |= !region.contains(p.x(), p.y(), p.z());
+  });
+}
+
+// The support plane's points are left out of the segmentation (Sec. III.C).
 void remove_support(SegmentationWork& w, const SupportPlaneConfig& config) {
   if (!config.enabled) return;
-  w.support = find_support_plane(w.cloud, config);
+  w.support = find_support_plane(w.cloud, config, w.skip);
   if (!w.support) return;
   if (w.skip.empty()) w.skip.assign(w.cloud.size(), 0);
   detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) { w.skip[i] |= w.support->on_plane[i]; });
+}
+
+// Stage 0: what is not segmented, as the config asks: the points outside the
+// region of interest, then the support plane's among the rest.
+void leave_out(SegmentationWork& w, const LccpConfig& config) {
+  keep_region(w, config.region);
+  remove_support(w, config.support);
 }
 
 // Stage 8 (A.4): small segments merged, segments numbered 1..K by size, and
@@ -59,7 +76,7 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
   const float v = config_.voxels.voxel_size_m;
   const SupervoxelConfig& sv = config_.supervoxels;
   switch (stage) {
-    case Stage::support: remove_support(w, config_.support); break;
+    case Stage::support: leave_out(w, config_); break;
     case Stage::voxelize: w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip); break;
     case Stage::normals: w.normals = estimate_voxel_normals(w.grid, config_.normals); break;
     case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;

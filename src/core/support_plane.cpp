@@ -66,6 +66,18 @@ struct Samples {
 // is_finite(p), cheaper: x * 0 is NaN exactly when x is NaN or infinite.
 bool finite_point(const Eigen::Vector3f& p) { return p.x() * 0.0f + p.y() * 0.0f + p.z() * 0.0f == 0.0f; }
 
+// The points that take part: finite and not skipped.
+struct Candidates {
+  const CloudView& cloud;
+  const std::vector<std::uint8_t>& skip;
+
+  bool counts(std::size_t i) const { return finite_point(cloud.points[i]) && (skip.empty() || !skip[i]); }
+  // Whether point i takes part and lies within distance of the plane (a NaN or infinite point does not).
+  bool on(const Plane& plane, float distance, std::size_t i) const {
+    return std::abs(plane.distance(cloud.points[i])) <= distance && (skip.empty() || !skip[i]);
+  }
+};
+
 std::size_t block_count(std::size_t n) { return (n + kBlock - 1) / kBlock; }
 
 // Calls body(b, begin, end) for every fixed block b = [begin, end) of [0, n), in parallel.
@@ -76,16 +88,18 @@ void for_each_block(std::size_t n, Body&& body) {
 }
 
 // The scoring samples: the cloud's index range cut into kScoreSamples equal
-// intervals (fewer for a small cloud), the first finite point of each, in order;
-// an interval without one gives none. No pass over the whole cloud is needed, at
-// the price of fewer samples when most of it is NaN (10% finite: about 400).
-Samples score_samples(const CloudView& cloud) {
+// intervals (fewer for a small cloud), the first point of each that takes part,
+// in order; an interval without one gives none. No pass over the whole cloud is
+// needed, at the price of fewer samples when most of it is NaN or skipped (10%
+// left: about 400).
+Samples score_samples(const Candidates& candidates) {
+  const CloudView& cloud = candidates.cloud;
   const std::size_t n = std::min(cloud.size(), kScoreSamples);
   std::vector<std::size_t> chosen(n, cloud.size());
   detail::parallel_for_each_index(n, [&](std::size_t k) {
     const std::size_t end = (k + 1) * cloud.size() / n;
     for (std::size_t i = k * cloud.size() / n; i < end; ++i) {
-      if (finite_point(cloud.points[i])) {
+      if (candidates.counts(i)) {
         chosen[k] = i;
         break;
       }
@@ -188,14 +202,15 @@ Moments sample_moments(const Samples& s, const Plane& plane, float distance) {
   return sums.moments();
 }
 
-// Moments of all the cloud's points within distance of the plane (a NaN or infinite
-// point fails the test): per fixed block in parallel, added in block order.
-Moments inlier_moments(const CloudView& cloud, const Plane& plane, float distance) {
+// Moments of all the points within distance of the plane that take part: per
+// fixed block in parallel, added in block order.
+Moments inlier_moments(const Candidates& candidates, const Plane& plane, float distance) {
+  const CloudView& cloud = candidates.cloud;
   std::vector<Moments> blocks(block_count(cloud.size()), Moments::Zero());
   for_each_block(cloud.size(), [&](std::size_t b, std::size_t begin, std::size_t end) {
     MomentSums sums;
     for (std::size_t i = begin; i < end; ++i) {
-      if (std::abs(plane.distance(cloud.points[i])) <= distance) sums.add(cloud.points[i]);
+      if (candidates.on(plane, distance, i)) sums.add(cloud.points[i]);
     }
     blocks[b] = sums.moments();
   });
@@ -223,9 +238,9 @@ Plane refit(const Moments& inliers, const Plane& previous, const Criteria& c) {
 // Two least-squares rounds (fit, re-collect the inliers): the first over the
 // scoring samples, cheap, corrects the tilt of the three-point hypothesis, so that
 // the second collects the whole cloud's inliers around a nearly final plane.
-Plane refined(const CloudView& cloud, const Samples& s, const Plane& hypothesis, const Criteria& c) {
+Plane refined(const Candidates& candidates, const Samples& s, const Plane& hypothesis, const Criteria& c) {
   const Plane coarse = refit(sample_moments(s, hypothesis, c.distance), hypothesis, c);
-  return refit(inlier_moments(cloud, coarse, c.distance), coarse, c);
+  return refit(inlier_moments(candidates, coarse, c.distance), coarse, c);
 }
 
 // Normal toward the sensor at the origin (d > 0); a plane through it along up.
@@ -234,24 +249,24 @@ Plane oriented(const Plane& p, const Eigen::Vector3f& up) {
   return p;
 }
 
-// The support's points, and the count of finite points (for the inlier share).
+// The support's points, and the count of points that take part (for the inlier share).
 struct Marking {
   SupportPlane support;
   std::uint64_t finite = 0;
 };
 
-Marking marked(const CloudView& cloud, const Plane& plane, float distance) {
-  Marking m{SupportPlane{plane, std::vector<std::uint8_t>(cloud.size(), 0), 0}, 0};
-  std::vector<std::uint64_t> inliers(block_count(cloud.size()), 0), finite(inliers.size(), 0);
-  for_each_block(cloud.size(), [&](std::size_t b, std::size_t begin, std::size_t end) {
-    const Eigen::Vector3f* points = cloud.points.data();  // raw pointers: the byte stores
-    std::uint8_t* on_plane = m.support.on_plane.data();  // would reload them every point
+Marking marked(const Candidates& candidates, const Plane& plane, float distance) {
+  const std::size_t n = candidates.cloud.size();
+  Marking m{SupportPlane{plane, std::vector<std::uint8_t>(n, 0), 0}, 0};
+  std::vector<std::uint64_t> inliers(block_count(n), 0), finite(inliers.size(), 0);
+  for_each_block(n, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::uint8_t* on_plane = m.support.on_plane.data();  // a raw pointer: the byte stores would reload it every point
     std::uint64_t on_count = 0, finite_count = 0;
     for (std::size_t i = begin; i < end; ++i) {
-      const bool on = std::abs(plane.distance(points[i])) <= distance;
+      const bool on = candidates.on(plane, distance, i);
       on_plane[i] = on;
       on_count += on;
-      finite_count += finite_point(points[i]);
+      finite_count += candidates.counts(i);
     }
     inliers[b] = on_count, finite[b] = finite_count;
   });
@@ -261,15 +276,17 @@ Marking marked(const CloudView& cloud, const Plane& plane, float distance) {
 
 }  // namespace
 
-std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config) {
+std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config,
+                                               const std::vector<std::uint8_t>& skip) {
   if (!(config.distance_m > 0.0f)) return std::nullopt;
   const Criteria criteria = criteria_of(config);
-  const Samples samples = score_samples(cloud);
+  const Candidates candidates{cloud, skip};
+  const Samples samples = score_samples(candidates);
   if (samples.size() < 3) return std::nullopt;
   const auto best = best_hypothesis(samples, criteria, config);
   if (!best) return std::nullopt;
-  const Plane plane = oriented(refined(cloud, samples, *best, criteria), criteria.up);
-  Marking m = marked(cloud, plane, criteria.distance);
+  const Plane plane = oriented(refined(candidates, samples, *best, criteria), criteria.up);
+  Marking m = marked(candidates, plane, criteria.distance);
   const double least = static_cast<double>(config.min_inlier_share) * static_cast<double>(m.finite);
   if (static_cast<double>(m.support.inliers) < least) return std::nullopt;
   return std::move(m.support);

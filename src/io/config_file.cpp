@@ -102,8 +102,15 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 27>& keys() {
-  static const std::array<Key, 27> table{
+const std::array<Key, 33>& keys() {
+  static const std::array<Key, 33> table{
+      float_key("region_min_x_m", [](auto& c) -> auto& { return c.region.min_x_m; },
+                "region of interest: points outside the box are not segmented (metres; -inf: unbounded)"),
+      float_key("region_max_x_m", [](auto& c) -> auto& { return c.region.max_x_m; }, "region of interest, largest x (inf: unbounded)"),
+      float_key("region_min_y_m", [](auto& c) -> auto& { return c.region.min_y_m; }, "region of interest, smallest y"),
+      float_key("region_max_y_m", [](auto& c) -> auto& { return c.region.max_y_m; }, "region of interest, largest y"),
+      float_key("region_min_z_m", [](auto& c) -> auto& { return c.region.min_z_m; }, "region of interest, smallest z (camera: nearest depth)"),
+      float_key("region_max_z_m", [](auto& c) -> auto& { return c.region.max_z_m; }, "region of interest, largest z (camera: farthest depth)"),
       bool_key("support_plane", [](auto& c) -> auto& { return c.support.enabled; },
                "remove the support plane first, Sec. III.C (true/false)"),
       float_key("support_distance_m", [](auto& c) -> auto& { return c.support.distance_m; },

@@ -44,9 +44,11 @@ class LccpSegmenter {
   // Throws lccp::Error if the config is out of range.
   explicit LccpSegmenter(const LccpConfig& config);
 
-  // Labels every finite point (but those on the support plane, if the config
-  // removes it: see SegmentationWork::support); deterministic for a given cloud and config,
-  // whatever the thread count. Throws lccp::Error for a cloud without finite points.
+  // Labels every finite point (but those outside the config's region of
+  // interest and those on the support plane, if the config removes it: see
+  // SegmentationWork::support); deterministic for a given cloud and config,
+  // whatever the thread count. Throws lccp::Error for a cloud without finite
+  // points, or with none left to segment.
   SegmentationResult segment(const CloudView& cloud) const;
 
   // The same, keeping every stage's output (grid, normals, supervoxels, graph)

@@ -13,7 +13,7 @@
 namespace lccp {
 
 enum class Stage : unsigned char {
-  support,     // 0. support plane removed (Sec. III.C), if the config asks for it
+  support,     // 0. points outside the region of interest, then the support plane (Sec. III.C), left out if the config asks
   voxelize,    // 1. voxel grid with 26-adjacency (A.1, VCCS)
   normals,     // 2. one normal per voxel
   seeds,       // 3. supervoxel seeds on a grid of R_seed

@@ -30,7 +30,10 @@ struct SupportPlane {
 // The plane with the most finite points within config.distance_m (normal within
 // max_tilt_deg of the up direction when one is given), refined by least squares
 // over its inliers; empty when it holds fewer than min_inlier_share of the finite
-// points. Deterministic for a given cloud and config, whatever the thread count.
-std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config);
+// points. Points i with skip[i] != 0 (skip: empty or one per point) take no
+// part, and are not on the plane. Deterministic for a given cloud and config,
+// whatever the thread count.
+std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config,
+                                               const std::vector<std::uint8_t>& skip = {});
 
 }  // namespace lccp
