@@ -43,6 +43,8 @@ TEST(RegionOfInterest, KeysParseValidateAndShow) {
   EXPECT_NE(describe_config(config).find("region_max_z_m: 1.5"), std::string::npos) << describe_config(config);
 
   EXPECT_EQ(config_error("region_max_x_m=inf"), "");
+  EXPECT_EQ(parse_config("region_min_y_m: -.inf\nregion_max_y_m: .inf\n", "yaml").objects.region.min_y_m, -kInf);
+  EXPECT_EQ(parse_config("region_max_y_m: .Inf\n", "yaml").objects.region.max_y_m, kInf);
   EXPECT_NE(config_error("region_min_z_m=inf").find("'region_min_z_m' must be below its max key"), std::string::npos)
       << config_error("region_min_z_m=inf");
   EXPECT_NE(config_error("region_max_y_m=-inf").find("'region_min_y_m'"), std::string::npos);

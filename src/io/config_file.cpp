@@ -4,6 +4,7 @@
 #include <charconv>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -35,7 +36,13 @@ std::string printable(std::string_view text) {
   return text.size() > 60 ? out + "..." : out;
 }
 
+// A number, or an infinity as YAML writes it (.inf, -.inf) or as C++ does (inf, -inf).
 float parse_float(std::string_view key, const std::string& text) {
+  const bool signed_text = !text.empty() && (text[0] == '-' || text[0] == '+');
+  const std::string_view magnitude = std::string_view(text).substr(signed_text ? 1 : 0);
+  if (magnitude == ".inf" || magnitude == ".Inf" || magnitude == ".INF") {
+    return text[0] == '-' ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
+  }
   float value = 0.0f;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc{} || end != text.data() + text.size()) {
