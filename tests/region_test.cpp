@@ -1,6 +1,7 @@
 // The region of interest (RegionConfig): points outside the box are left out
 // before anything else, exactly as if they had no depth; the support plane is
 // sought among the rest; the keys parse, validate and show.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -82,6 +83,32 @@ TEST(RegionOfInterest, PointsOutsideAreLabelledAsIfTheyHadNoDepth) {
     labelled += with_region[i] != 0;
   }
   EXPECT_EQ(labelled, inside);
+}
+
+// Nothing inside the region is a result (no segment, every point 0), as a
+// robot needs when it looks away from its work space; a cloud without any
+// finite point is still an error, region or not.
+TEST(RegionOfInterest, ARegionHoldingNoPointGivesAnEmptyResult) {
+  const PointCloud cloud = read_cloud(std::filesystem::path(LCCP_TEST_DATA_DIR) / "mosd_test2.pcd").cloud;
+  LccpConfig config;
+  config.region.max_z_m = 0.1f;  // the scene's depths are 0.5-1.2 m
+  const SegmentationResult result = LccpSegmenter(config).segment(cloud);
+  EXPECT_EQ(result.segment_count, 0u);
+  EXPECT_EQ(result.supervoxel_count, 0u);
+  EXPECT_EQ(result.voxel_count, 0u);
+  ASSERT_EQ(result.labels.size(), cloud.size());
+  EXPECT_EQ(std::count(result.labels.begin(), result.labels.end(), 0u), static_cast<std::ptrdiff_t>(cloud.size()));
+
+  PointCloud no_depth = cloud;
+  for (Eigen::Vector3f& p : no_depth.points) p = Eigen::Vector3f::Constant(kNaN);
+  for (const LccpConfig& c : {config, LccpConfig{}}) {
+    try {
+      LccpSegmenter(c).segment(no_depth);
+      ADD_FAILURE() << "a cloud without finite points was segmented";
+    } catch (const Error& e) {
+      EXPECT_STREQ(e.what(), "the cloud has no finite points");
+    }
+  }
 }
 
 // A 0.8 x 0.8 m table 0.3 m below the sensor with a 10 cm cube on it and,

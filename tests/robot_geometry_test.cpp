@@ -104,5 +104,25 @@ TEST(RobotGeometry, TwoTouchingBoxesOnAPlaneMeasuredThroughTheRobotPreset) {
   }
 }
 
+// A robot that has cleared its table sees the plane alone: the frame is the
+// support and no object, not an error.
+TEST(RobotGeometry, AnEmptyTableIsTheSupportAndNoObject) {
+  const test::BoxScene table = test::box_scene({}, test::SensorSpec{});
+  ASSERT_GT(table.cloud.size(), 10000u);
+  const SceneSegmenter segmenter(load_config(fs::path(LCCP_CONFIG_DIR) / "robot.yaml"));
+  const SceneSegmentation scene = segmenter.segment(table.cloud);
+  ASSERT_TRUE(scene.support_plane.has_value());
+  EXPECT_LT(test::angle_deg(scene.support_plane->normal, table.plane.normal.cast<double>()), 0.5);
+  ASSERT_NE(scene.support_id, 0u);
+  EXPECT_TRUE(scene.segments.empty());
+  EXPECT_EQ(scene.object_count, 0u);
+  EXPECT_EQ(scene.segment_count, 0u);
+  ASSERT_EQ(scene.labels.size(), table.cloud.size());
+  for (std::size_t i = 0; i < scene.labels.size(); ++i) {
+    ASSERT_EQ(scene.labels[i], scene.support_id) << "point " << i;
+    ASSERT_EQ(scene.objects[i], scene.support_id) << "point " << i;
+  }
+}
+
 }  // namespace
 }  // namespace lccp

@@ -23,13 +23,19 @@ Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
   return labels;
 }
 
+// Adds the points i for which left_out(i) holds to w.skip.
+template <typename Predicate>
+void leave_out_points(SegmentationWork& w, Predicate&& left_out) {
+  if (w.skip.empty()) w.skip.assign(w.cloud.size(), 0);
+  detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) { w.skip[i] |= left_out(i) ? 1 : 0; });
+}
+
 // Points outside the region of interest are left out of everything that follows.
 void keep_region(SegmentationWork& w, const RegionConfig& region) {
   if (!region.bounded()) return;
-  if (w.skip.empty()) w.skip.assign(w.cloud.size(), 0);
-  detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) {
+  leave_out_points(w, [&](std::size_t i) {
     const Eigen::Vector3f& p = w.cloud.points[i];
-    w.skip[i] |= !region.contains(p.x(), p.y(), p.z());
+    return !region.contains(p.x(), p.y(), p.z());
   });
 }
 
@@ -38,8 +44,7 @@ void remove_support(SegmentationWork& w, const SupportPlaneConfig& config) {
   if (!config.enabled) return;
   w.support = find_support_plane(w.cloud, config, w.skip);
   if (!w.support) return;
-  if (w.skip.empty()) w.skip.assign(w.cloud.size(), 0);
-  detail::parallel_for_each_index(w.skip.size(), [&](std::size_t i) { w.skip[i] |= w.support->on_plane[i]; });
+  leave_out_points(w, [&](std::size_t i) { return w.support->on_plane[i] != 0; });
 }
 
 // Stage 0: what is not segmented, as the config asks: the points outside the

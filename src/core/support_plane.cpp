@@ -71,10 +71,11 @@ struct Candidates {
   const CloudView& cloud;
   const std::vector<std::uint8_t>& skip;
 
-  bool counts(std::size_t i) const { return finite_point(cloud.points[i]) && (skip.empty() || !skip[i]); }
+  bool kept(std::size_t i) const { return skip.empty() || !skip[i]; }
+  bool counts(std::size_t i) const { return finite_point(cloud.points[i]) && kept(i); }
   // Whether point i takes part and lies within distance of the plane (a NaN or infinite point does not).
   bool on(const Plane& plane, float distance, std::size_t i) const {
-    return std::abs(plane.distance(cloud.points[i])) <= distance && (skip.empty() || !skip[i]);
+    return std::abs(plane.distance(cloud.points[i])) <= distance && kept(i);
   }
 };
 

@@ -266,6 +266,19 @@ void check_limit(bool ok, const std::string& what, const char* key, double limit
   if (!ok) throw Error(what + ", more than " + key + " (" + format_number(limit) + ")");
 }
 
+// A cloud whose finite points were all left out (outside the region of
+// interest, or on the support plane: an empty table) has nothing to segment,
+// which is a result, not an error; one without any finite point is an error.
+VoxelGrid no_voxels(const CloudView& cloud, Binning binning) {
+  if (std::none_of(cloud.points.begin(), cloud.points.end(), is_finite)) throw Error("the cloud has no finite points");
+  VoxelGrid grid;
+  grid.binning = binning;
+  grid.points.offsets.assign(1, 0);
+  grid.neighbors.offsets.assign(1, 0);
+  grid.voxel_of_point.assign(cloud.size(), kNoVoxel);
+  return grid;
+}
+
 }  // namespace
 
 VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const LimitsConfig& limits,
@@ -288,7 +301,7 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
     binning = Binning::euclidean;
     bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
   }
-  if (bounds.count == 0) throw Error(skip.empty() ? "the cloud has no finite points" : "no points left to segment");
+  if (bounds.count == 0) return no_voxels(cloud, binning);
   const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
   const PackedKeys packing = detail::packed_keys(keys, cloud.size());
   if (!keys.fits() || !packing.fits()) throw Error("the cloud spans too many voxels for its voxel size");

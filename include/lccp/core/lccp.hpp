@@ -48,7 +48,8 @@ class LccpSegmenter {
   // interest and those on the support plane, if the config removes it: see
   // SegmentationWork::support); deterministic for a given cloud and config,
   // whatever the thread count. Throws lccp::Error for a cloud without finite
-  // points, or with none left to segment.
+  // points; one whose finite points are all left out gives no segment (every
+  // label 0), as an empty table does.
   SegmentationResult segment(const CloudView& cloud) const;
 
   // The same, keeping every stage's output (grid, normals, supervoxels, graph)

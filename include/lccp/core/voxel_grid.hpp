@@ -43,7 +43,8 @@ struct VoxelGrid {
 // z <= 0, when the cloud spans more cells than the integer keys can hold, or
 // when it exceeds a limit (more points or voxels than allowed, a finite point
 // beyond max_coordinate_m). Points i with skip[i] != 0 are left out (no voxel),
-// as if they were not finite; an empty `skip` leaves none out.
+// as if they were not finite; an empty `skip` leaves none out. A cloud whose
+// finite points are all left out gives a grid without voxels.
 VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const LimitsConfig& limits = {},
                    const std::vector<std::uint8_t>& skip = {});
 
