@@ -559,7 +559,7 @@ int main(int argc, char** argv) {
     std::printf("- date: %s\n- command: `%s`\n- mOSD: %s, %zu scenes\n- TBB threads (ours): %zu; PCL is single-threaded\n",
                 date.c_str(), command.c_str(), dir.c_str(), scenes.size(), threads);
     std::printf("- config: %s\n- PCL: SupervoxelClustering (default camera transform: organized clouds only, no "
-                "refinement) + LCCPSegmentation (sanity check as configured, smoothness check off, k = 0, "
+                "refinement) + LCCPSegmentation (sanity and smoothness checks as configured, k = 0, "
                 "min segment size = n_filter)\n",
                 config_source.c_str());
     std::printf("- scoring: score_segmentation over finite points, GT labels 0-9 (table) ignored; S_i = the segment "
