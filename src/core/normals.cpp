@@ -83,16 +83,23 @@ bool lies_on(const LocalPlane& plane, const Eigen::Vector3f& x) {
 // Near a crease a voxel's neighbourhood spans both surfaces and its plane fits
 // neither, while some neighbour's neighbourhood lies on one surface only. Each
 // voxel takes the plane of the flattest neighbourhood, among its own and its
-// neighbours', that its centroid lies on, turned toward the sensor.
+// neighbours', that its centroid lies on (the first, in neighbour order, of
+// equally flat ones), turned toward the sensor. Both tests are evaluated for
+// every neighbour and the choice is a select, not a branch: which neighbours
+// pass is unpredictable.
 std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std::vector<LocalPlane>& planes) {
   std::vector<Eigen::Vector3f> normals(grid.size());
   detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
     const Eigen::Vector3f& x = grid.centroids[v];
-    const LocalPlane* best = &planes[v];
+    std::size_t best = v;
+    float flattest = planes[v].variation;
     for (const std::uint32_t* u = grid.neighbors.begin(v); u != grid.neighbors.end(v); ++u) {
-      if (planes[*u].variation < best->variation && lies_on(planes[*u], x)) best = &planes[*u];
+      const bool better = (planes[*u].variation < flattest) & lies_on(planes[*u], x);
+      best = better ? *u : best;
+      flattest = better ? planes[*u].variation : flattest;
     }
-    normals[v] = best->normal.dot(x) > 0 ? Eigen::Vector3f(-best->normal) : best->normal;
+    const Eigen::Vector3f& n = planes[best].normal;
+    normals[v] = n.dot(x) > 0 ? Eigen::Vector3f(-n) : n;
   });
   return normals;
 }
