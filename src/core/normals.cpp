@@ -94,7 +94,9 @@ std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std:
     std::size_t best = v;
     float flattest = planes[v].variation;
     for (const std::uint32_t* u = grid.neighbors.begin(v); u != grid.neighbors.end(v); ++u) {
-      const bool better = (planes[*u].variation < flattest) & lies_on(planes[*u], x);
+      const bool flatter = planes[*u].variation < flattest;
+      const bool on = lies_on(planes[*u], x);
+      const bool better = flatter & on;
       best = better ? *u : best;
       flattest = better ? planes[*u].variation : flattest;
     }
