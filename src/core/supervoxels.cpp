@@ -209,28 +209,31 @@ class Grower {
   // The nearest supervoxel among v's neighbours' other than v's own (ties:
   // smaller id), with its distance; kNone if every neighbour is v's own or free.
   std::pair<std::uint32_t, float> nearest_other(std::size_t v) const {
-    // Gather the neighbours' foreign owners without branching (boundaries make
-    // branches unpredictable), then measure each of them, skipping repeats of
-    // the previous one (neighbours of one owner come in runs; measuring a
-    // repeat again would not change the result).
+    // Gather the neighbours' foreign owners, dropping repeats of the previous
+    // one (neighbours of one owner come in runs), measure them all, then take
+    // the least. Each step is free of branches: at boundaries they mispredict,
+    // and independent distances let the square roots and divisions overlap.
     const std::uint32_t current = owner_[v];
     std::array<std::uint32_t, 26> foreign;
     std::size_t count = 0;
+    std::uint32_t last = kNone;
     for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
       const std::uint32_t k = owner_[*w];
+      const bool kept = (k != current) & (k != kNone) & (k != last);
       foreign[count] = k;
-      count += (k != current) & (k != kNone);
+      count += kept;
+      last = kept ? k : last;
     }
+    std::array<float, 26> d;
+    for (std::size_t i = 0; i < count; ++i) d[i] = distance(v, centres_[foreign[i]]);
     std::uint32_t best = kNone;
     float best_distance = kUnreached;
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t k = foreign[i];
-      if (i > 0 && foreign[i - 1] == k) continue;
-      const float d = distance(v, centres_[k]);
-      if (d < best_distance || (d == best_distance && k < best)) {
-        best = k;
-        best_distance = d;
-      }
+      const float dk = d[i];
+      const bool nearer = (dk < best_distance) | ((dk == best_distance) & (k < best));
+      best = nearer ? k : best;
+      best_distance = nearer ? dk : best_distance;
     }
     return {best, best_distance};
   }
