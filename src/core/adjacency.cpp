@@ -1,6 +1,7 @@
 #include "lccp/core/adjacency.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -20,11 +21,22 @@ std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid, const Supervoxels&
     auto& pairs = local_pairs.local();
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
       if (absorbed[v]) continue;
-      const std::uint64_t a = supervoxel_of[v];
-      const auto first_of_voxel = static_cast<std::ptrdiff_t>(pairs.size());
+      // Gather the neighbours' larger ids without branching (which neighbours
+      // qualify is unpredictable at boundaries), dropping repeats of the last.
+      const std::uint32_t a = supervoxel_of[v];
+      std::array<std::uint32_t, 26> larger;
+      std::size_t count = 0;
+      std::uint32_t last = a;
       for (const std::uint32_t* w = grid.neighbors.begin(v); w != grid.neighbors.end(v); ++w) {
-        if (supervoxel_of[*w] <= a || absorbed[*w]) continue;
-        const std::uint64_t pair = a << id_bits | supervoxel_of[*w];
+        const std::uint32_t b = supervoxel_of[*w];
+        const bool kept = (b > a) & (absorbed[*w] == 0) & (b != last);
+        larger[count] = b;
+        count += kept;
+        last = kept ? b : last;
+      }
+      const auto first_of_voxel = static_cast<std::ptrdiff_t>(pairs.size());
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::uint64_t pair = std::uint64_t{a} << id_bits | larger[i];
         if (std::find(pairs.begin() + first_of_voxel, pairs.end(), pair) == pairs.end()) pairs.push_back(pair);
       }
     }
