@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../src/core/plane_fit.hpp"
 #include "lccp/config.hpp"
 #include "lccp/core/normals.hpp"
 #include "lccp/core/voxel_grid.hpp"
@@ -487,6 +488,41 @@ TEST(VoxelNormals, IsolatedVoxelPointsToTheSensor) {
   ASSERT_EQ(g.neighbors.count(v), 0u);
   const auto n = estimate_voxel_normals(g, NormalConfig{});
   EXPECT_LT((n[v] - (-lonely.normalized())).norm(), 1e-5f) << n[v].transpose();
+}
+
+// The normals stage solves kSideBySide eigenproblems side by side; each must
+// come out bit for bit as when solved alone: planes, lines, blobs, points.
+TEST(PlaneFit, SideBySideEigenSolvesEqualSolvingEachAlone) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const auto covariance = [&](const Eigen::Vector3d& spread, int points) {
+    detail::Moments m = detail::Moments::Zero();
+    const Eigen::Matrix3d turn =
+        Eigen::Quaterniond(gauss(random), gauss(random), gauss(random), gauss(random)).normalized().toRotationMatrix();
+    for (int i = 0; i < points; ++i) {
+      const Eigen::Vector3d p = turn * Eigen::Vector3d(gauss(random), gauss(random), gauss(random)).cwiseProduct(spread);
+      m += detail::moments_of(p.cast<float>() + Eigen::Vector3f(0.1f, -0.2f, 1.0f));
+    }
+    return detail::covariance_of(m);
+  };
+  const std::array<Eigen::Vector3d, 6> spreads{Eigen::Vector3d(0.01, 0.01, 0.0005), Eigen::Vector3d(0.02, 0.005, 0.001),
+                                               Eigen::Vector3d(0.01, 0.0, 0.0),    Eigen::Vector3d(0.01, 0.01, 0.01),
+                                               Eigen::Vector3d(0.0, 0.0, 0.0),     Eigen::Vector3d(0.01, 0.01, 0.0)};
+  int solved = 0;
+  for (int round = 0; round < 200; ++round) {
+    std::array<Eigen::Matrix3d, detail::kSideBySide> a;
+    for (auto& matrix : a) matrix = covariance(spreads[random() % spreads.size()], 3 + static_cast<int>(random() % 60));
+    const auto together = detail::least_eigenvectors(a);
+    for (std::size_t j = 0; j < a.size(); ++j) {
+      const auto alone = detail::least_eigenvector(a[j]);
+      ASSERT_EQ(together[j].has_value(), alone.has_value()) << a[j];
+      if (alone) {
+        EXPECT_EQ(*together[j], *alone) << a[j];
+      }
+      solved += alone.has_value();
+    }
+  }
+  EXPECT_GT(solved, 400);  // most of them are planes with a normal
 }
 
 // The largest angle between a voxel's normal and the normal of the face its

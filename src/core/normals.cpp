@@ -1,6 +1,7 @@
 #include "lccp/core/normals.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "parallel.hpp"
@@ -41,6 +42,26 @@ std::vector<Moments> two_ring_moments(const VoxelGrid& grid, const std::vector<M
 Eigen::Vector3f pca_normal(double count, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& centroid) {
   const Eigen::Vector3f toward_sensor = -centroid.normalized();
   return detail::plane_normal(count, covariance, toward_sensor).value_or(toward_sensor);
+}
+
+// pca_normal of every voxel, detail::kSideBySide voxels at a time (the same
+// normals; their eigen-solves overlap).
+std::vector<Eigen::Vector3f> pca_normals(const VoxelGrid& grid, const std::vector<Moments>& neighbourhoods) {
+  constexpr std::size_t kGroup = detail::kSideBySide;
+  std::vector<Eigen::Vector3f> normals(grid.size());
+  detail::parallel_for_each_index((grid.size() + kGroup - 1) / kGroup, [&](std::size_t group) {
+    const std::size_t first = group * kGroup, count = std::min(kGroup, grid.size() - first);
+    std::array<Eigen::Matrix3d, kGroup> covariances;
+    covariances.fill(Eigen::Matrix3d::Zero());
+    for (std::size_t j = 0; j < count; ++j) covariances[j] = detail::covariance_of(neighbourhoods[first + j]);
+    const auto directions = detail::least_eigenvectors(covariances);
+    for (std::size_t j = 0; j < count; ++j) {
+      const Eigen::Vector3f toward_sensor = -grid.centroids[first + j].normalized();
+      const bool enough = neighbourhoods[first + j](0) >= 3.0;  // as plane_normal
+      normals[first + j] = detail::oriented_normal(enough ? directions[j] : std::nullopt, toward_sensor).value_or(toward_sensor);
+    }
+  });
+  return normals;
 }
 
 // Mean point normals as given (multi-view clouds: oriented per view, not
@@ -116,12 +137,7 @@ std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const
     detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { planes[v] = local_plane(neighbourhoods[v], grid.centroids[v]); });
     return crease_preserving(grid, planes);
   }
-  std::vector<Eigen::Vector3f> normals(grid.size());
-  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
-    const Moments& m = neighbourhoods[v];
-    normals[v] = pca_normal(m(0), detail::covariance_of(m), grid.centroids[v]);
-  });
-  return normals;
+  return pca_normals(grid, neighbourhoods);
 }
 
 }  // namespace lccp

@@ -1,5 +1,7 @@
 #pragma once
 // Internal: least-squares plane fitting from accumulated moments (voxel normals).
+#include <array>
+#include <cstddef>
 #include <optional>
 
 #include <Eigen/Core>
@@ -17,10 +19,20 @@ Eigen::Matrix3d covariance_of(const Moments& m);
 // semi-definite 3x3 matrix; empty when that eigenvalue is not simple.
 std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a);
 
+// least_eigenvector of kSideBySide matrices at once, with the same results: their
+// iterations advance side by side, so that one's divisions overlap another's.
+constexpr std::size_t kSideBySide = 4;
+std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
+    const std::array<Eigen::Matrix3d, kSideBySide>& a);
+
 // Normal of the best-fit plane through `count` points of the given covariance
 // (covariance_of), oriented to agree with `reference`; empty for fewer than
 // three points or a degenerate set.
 std::optional<Eigen::Vector3f> plane_normal(double count, const Eigen::Matrix3d& covariance,
                                             const Eigen::Vector3f& reference);
+
+// A direction as a float normal oriented to agree with `reference`; empty if it is.
+std::optional<Eigen::Vector3f> oriented_normal(const std::optional<Eigen::Vector3d>& direction,
+                                               const Eigen::Vector3f& reference);
 
 }  // namespace lccp::detail
