@@ -36,19 +36,14 @@ std::vector<Moments> two_ring_moments(const VoxelGrid& grid, const std::vector<M
   return two_ring;
 }
 
-// Least-variance direction of the neighbourhood, oriented toward the sensor at
-// the origin; with fewer than three distinct centroids or a line, the direction
-// toward the sensor itself.
-Eigen::Vector3f pca_normal(double count, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& centroid) {
-  const Eigen::Vector3f toward_sensor = -centroid.normalized();
-  return detail::plane_normal(count, covariance, toward_sensor).value_or(toward_sensor);
-}
-
-// pca_normal of every voxel, detail::kSideBySide voxels at a time (the same
-// normals; their eigen-solves overlap).
-std::vector<Eigen::Vector3f> pca_normals(const VoxelGrid& grid, const std::vector<Moments>& neighbourhoods) {
+// Calls take(v, covariance, normal) for every voxel with the least-variance
+// direction of its neighbourhood, oriented toward the sensor at the origin
+// (with fewer than three distinct centroids or a line, the direction toward
+// the sensor itself). detail::kSideBySide voxels at a time, so that their
+// eigen-solves overlap; each normal is as if solved alone.
+template <typename Take>
+void for_each_pca_normal(const VoxelGrid& grid, const std::vector<Moments>& neighbourhoods, Take take) {
   constexpr std::size_t kGroup = detail::kSideBySide;
-  std::vector<Eigen::Vector3f> normals(grid.size());
   detail::parallel_for_each_index((grid.size() + kGroup - 1) / kGroup, [&](std::size_t group) {
     const std::size_t first = group * kGroup, count = std::min(kGroup, grid.size() - first);
     std::array<Eigen::Matrix3d, kGroup> covariances;
@@ -57,11 +52,11 @@ std::vector<Eigen::Vector3f> pca_normals(const VoxelGrid& grid, const std::vecto
     const auto directions = detail::least_eigenvectors(covariances);
     for (std::size_t j = 0; j < count; ++j) {
       const Eigen::Vector3f toward_sensor = -grid.centroids[first + j].normalized();
-      const bool enough = neighbourhoods[first + j](0) >= 3.0;  // as plane_normal
-      normals[first + j] = detail::oriented_normal(enough ? directions[j] : std::nullopt, toward_sensor).value_or(toward_sensor);
+      const bool enough = neighbourhoods[first + j](0) >= 3.0;  // points for a plane
+      const auto normal = detail::oriented_normal(enough ? directions[j] : std::nullopt, toward_sensor);
+      take(first + j, covariances[j], normal.value_or(toward_sensor));
     }
   });
-  return normals;
 }
 
 // Mean point normals as given (multi-view clouds: oriented per view, not
@@ -87,9 +82,7 @@ struct LocalPlane {
 
 // The tolerance is two standard deviations of the fit, plus 0.1 mm for float
 // rounding (the coarsest spacing LimitsConfig allows is 61 um).
-LocalPlane local_plane(const Moments& m, const Eigen::Vector3f& centroid) {
-  const Eigen::Matrix3d covariance = detail::covariance_of(m);
-  const Eigen::Vector3f normal = pca_normal(m(0), covariance, centroid);
+LocalPlane local_plane(const Moments& m, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& normal) {
   const Eigen::Vector3d n = normal.cast<double>();
   const double residual = std::max(0.0, n.dot(covariance * n));
   return {(m.segment<3>(1) / m[0]).cast<float>(), normal, 2.0f * std::sqrt(static_cast<float>(residual)) + 1e-4f,
@@ -134,10 +127,15 @@ std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const
   const std::vector<Moments> neighbourhoods = two_ring_moments(grid, centroid_moments(grid));
   if (config.crease_preserving) {
     std::vector<LocalPlane> planes(grid.size());
-    detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { planes[v] = local_plane(neighbourhoods[v], grid.centroids[v]); });
+    for_each_pca_normal(grid, neighbourhoods, [&](std::size_t v, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& n) {
+      planes[v] = local_plane(neighbourhoods[v], covariance, n);
+    });
     return crease_preserving(grid, planes);
   }
-  return pca_normals(grid, neighbourhoods);
+  std::vector<Eigen::Vector3f> normals(grid.size());
+  for_each_pca_normal(grid, neighbourhoods,
+                      [&](std::size_t v, const Eigen::Matrix3d&, const Eigen::Vector3f& n) { normals[v] = n; });
+  return normals;
 }
 
 }  // namespace lccp

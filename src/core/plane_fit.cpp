@@ -87,11 +87,6 @@ std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
   return result;
 }
 
-std::optional<Eigen::Vector3f> plane_normal(double count, const Eigen::Matrix3d& covariance,
-                                            const Eigen::Vector3f& reference) {
-  return oriented_normal(count >= 3.0 ? least_eigenvector(covariance) : std::nullopt, reference);
-}
-
 std::optional<Eigen::Vector3f> oriented_normal(const std::optional<Eigen::Vector3d>& direction,
                                                const Eigen::Vector3f& reference) {
   if (!direction) return std::nullopt;

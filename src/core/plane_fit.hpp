@@ -25,12 +25,6 @@ constexpr std::size_t kSideBySide = 4;
 std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
     const std::array<Eigen::Matrix3d, kSideBySide>& a);
 
-// Normal of the best-fit plane through `count` points of the given covariance
-// (covariance_of), oriented to agree with `reference`; empty for fewer than
-// three points or a degenerate set.
-std::optional<Eigen::Vector3f> plane_normal(double count, const Eigen::Matrix3d& covariance,
-                                            const Eigen::Vector3f& reference);
-
 // A direction as a float normal oriented to agree with `reference`; empty if it is.
 std::optional<Eigen::Vector3f> oriented_normal(const std::optional<Eigen::Vector3d>& direction,
                                                const Eigen::Vector3f& reference);
