@@ -51,11 +51,12 @@ std::optional<Eigen::Vector3d> eigenvector_of(const Eigen::Matrix3d& a, double l
   const Eigen::Matrix3d b = a - l_min * Eigen::Matrix3d::Identity();
   const std::array<Eigen::Vector3d, 3> candidates{b.row(0).cross(b.row(1)), b.row(0).cross(b.row(2)),
                                                   b.row(1).cross(b.row(2))};
-  const auto widest = std::max_element(candidates.begin(), candidates.end(),
-                                       [](const auto& x, const auto& y) { return x.squaredNorm() < y.squaredNorm(); });
+  const std::array<double, 3> widths{candidates[0].squaredNorm(), candidates[1].squaredNorm(),
+                                     candidates[2].squaredNorm()};
+  const std::size_t widest = std::max_element(widths.begin(), widths.end()) - widths.begin();  // the first of equals
   const double scale = b.squaredNorm();
-  if (!(widest->squaredNorm() > 1e-12 * scale * scale)) return std::nullopt;
-  return widest->normalized();
+  if (!(widths[widest] > 1e-12 * scale * scale)) return std::nullopt;
+  return Eigen::Vector3d(candidates[widest] / std::sqrt(widths[widest]));  // as Eigen's normalized()
 }
 
 }  // namespace
