@@ -28,6 +28,21 @@ PackedKeys packed_keys(const CellKeys& keys, std::size_t item_count) {
   return {std::max(1, static_cast<int>(std::bit_width(item_count))), keys.key_bits()};
 }
 
+void group_runs(const std::vector<std::uint64_t>& values, const PackedKeys& packing,
+                std::vector<std::uint64_t>& run_keys, CompressedRows& members) {
+  members.items.resize(values.size());
+  members.offsets.clear();
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::uint64_t key = packing.key(values[i]);
+    if (run_keys.empty() || key != run_keys.back()) {
+      run_keys.push_back(key);
+      members.offsets.push_back(static_cast<std::uint32_t>(i));
+    }
+    members.items[i] = packing.index(values[i]);
+  }
+  members.offsets.push_back(static_cast<std::uint32_t>(values.size()));
+}
+
 void radix_sort(std::vector<std::uint64_t>& values, const PackedKeys& packing) {
   // As few passes as possible with digits of at most 12 bits (counts stay in L1).
   constexpr int kMaxDigitBits = 12;

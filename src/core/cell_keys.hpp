@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "lccp/core/voxel_grid.hpp"
+
 namespace lccp::detail {
 
 using Cell = Eigen::Array3i;
@@ -54,6 +56,11 @@ struct PackedKeys {
 };
 
 PackedKeys packed_keys(const CellKeys& keys, std::size_t item_count);
+
+// Runs of equal keys in sorted packed values: each run's key, and its members'
+// indices as one row per run, in order.
+void group_runs(const std::vector<std::uint64_t>& values, const PackedKeys& packing,
+                std::vector<std::uint64_t>& run_keys, CompressedRows& members);
 
 // Stable LSD radix sort on the key bits of packed values, in parallel over
 // fixed-size blocks (a stable sort has one result, whatever the threads).

@@ -37,16 +37,9 @@ SeedCells group_by_seed_cell(const std::vector<Cell>& cell_of_voxel, const detai
   }
   detail::radix_sort(values, packing);
   SeedCells groups;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const std::uint64_t key = packing.key(values[i]);
-    if (groups.keys.empty() || key != groups.keys.back()) {
-      groups.keys.push_back(key);
-      groups.cells.push_back(cell_of_voxel[packing.index(values[i])]);
-      groups.voxels.offsets.push_back(static_cast<std::uint32_t>(i));
-    }
-    groups.voxels.items.push_back(packing.index(values[i]));
-  }
-  groups.voxels.offsets.push_back(static_cast<std::uint32_t>(values.size()));
+  detail::group_runs(values, packing, groups.keys, groups.voxels);
+  groups.cells.resize(groups.keys.size());
+  for (std::size_t c = 0; c < groups.cells.size(); ++c) groups.cells[c] = cell_of_voxel[*groups.voxels.begin(c)];
   return groups;
 }
 

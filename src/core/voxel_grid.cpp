@@ -125,24 +125,6 @@ std::vector<std::uint64_t> sorted_point_keys(const std::vector<Cell>& cells, con
   return values;
 }
 
-// Runs of equal keys become voxels: their keys and member point rows.
-void group_into_voxels(const std::vector<std::uint64_t>& values, const PackedKeys& packing,
-                       std::vector<std::uint64_t>& voxel_keys, CompressedRows& points) {
-  points.items.resize(values.size());
-  points.offsets.clear();
-  std::uint64_t previous = ~std::uint64_t{0};
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const std::uint64_t key = packing.key(values[i]);
-    if (key != previous) {
-      voxel_keys.push_back(key);
-      points.offsets.push_back(static_cast<std::uint32_t>(i));
-      previous = key;
-    }
-    points.items[i] = packing.index(values[i]);
-  }
-  points.offsets.push_back(static_cast<std::uint32_t>(values.size()));
-}
-
 Eigen::Vector3f unpack_rgb(std::uint32_t rgb) {
   return Eigen::Vector3f(static_cast<float>((rgb >> 16) & 0xff), static_cast<float>((rgb >> 8) & 0xff),
                          static_cast<float>(rgb & 0xff));
@@ -309,7 +291,7 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
   VoxelGrid grid;
   grid.binning = binning;
   std::vector<std::uint64_t> voxel_keys;
-  group_into_voxels(sorted_point_keys(cells, keys, packing, bounds.count), packing, voxel_keys, grid.points);
+  detail::group_runs(sorted_point_keys(cells, keys, packing, bounds.count), packing, voxel_keys, grid.points);
   check_limit(voxel_keys.size() <= limits.max_voxels, "the cloud fills " + std::to_string(voxel_keys.size()) + " voxels",
               "max_voxels", limits.max_voxels);
   compute_voxel_means(cloud, grid);
