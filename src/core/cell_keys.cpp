@@ -30,6 +30,7 @@ PackedKeys packed_keys(const CellKeys& keys, std::size_t item_count) {
 
 void group_runs(const std::vector<std::uint64_t>& values, const PackedKeys& packing,
                 std::vector<std::uint64_t>& run_keys, CompressedRows& members) {
+  run_keys.clear();
   members.items.resize(values.size());
   members.offsets.clear();
   for (std::size_t i = 0; i < values.size(); ++i) {

@@ -52,9 +52,8 @@ void for_each_pca_normal(const VoxelGrid& grid, const std::vector<Moments>& neig
     const auto directions = detail::least_eigenvectors(covariances);
     for (std::size_t j = 0; j < count; ++j) {
       const Eigen::Vector3f toward_sensor = -grid.centroids[first + j].normalized();
-      const bool enough = neighbourhoods[first + j](0) >= 3.0;  // points for a plane
-      const auto normal = detail::oriented_normal(enough ? directions[j] : std::nullopt, toward_sensor);
-      take(first + j, covariances[j], normal.value_or(toward_sensor));
+      const bool plane = neighbourhoods[first + j](0) >= 3.0 && directions[j];  // three points, not a line
+      take(first + j, covariances[j], plane ? detail::oriented_normal(*directions[j], toward_sensor) : toward_sensor);
     }
   });
 }

@@ -88,10 +88,8 @@ std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
   return result;
 }
 
-std::optional<Eigen::Vector3f> oriented_normal(const std::optional<Eigen::Vector3d>& direction,
-                                               const Eigen::Vector3f& reference) {
-  if (!direction) return std::nullopt;
-  const Eigen::Vector3f normal = direction->cast<float>();
+Eigen::Vector3f oriented_normal(const Eigen::Vector3d& direction, const Eigen::Vector3f& reference) {
+  const Eigen::Vector3f normal = direction.cast<float>();
   return normal.dot(reference) < 0.0f ? Eigen::Vector3f(-normal) : normal;
 }
 

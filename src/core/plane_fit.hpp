@@ -25,8 +25,7 @@ constexpr std::size_t kSideBySide = 4;
 std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
     const std::array<Eigen::Matrix3d, kSideBySide>& a);
 
-// A direction as a float normal oriented to agree with `reference`; empty if it is.
-std::optional<Eigen::Vector3f> oriented_normal(const std::optional<Eigen::Vector3d>& direction,
-                                               const Eigen::Vector3f& reference);
+// A direction as a float normal, turned to agree with `reference`.
+Eigen::Vector3f oriented_normal(const Eigen::Vector3d& direction, const Eigen::Vector3f& reference);
 
 }  // namespace lccp::detail
