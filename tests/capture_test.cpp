@@ -135,15 +135,13 @@ TEST(BackProjection, RejectsAnImageWithoutFieldOfViewOrWithTheWrongSize) {
 class RecordingTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    directory_ = new fs::path(fs::temp_directory_path() / ("lccp_capture_" + std::to_string(::getpid())));
+    directory_ = new fs::path(test::scratch_root() / "lccp_capture");
     fs::create_directories(*directory_);
     LiveOptions options;
     options.uri = "virtual://synthetic";
     stats_ = record_device(options, recording(), kRecordedFrames);
   }
   static void TearDownTestSuite() {
-    std::error_code ignored;
-    fs::remove_all(*directory_, ignored);
     delete directory_;
   }
   static fs::path recording() { return *directory_ / "synthetic.oni"; }

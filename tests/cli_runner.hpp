@@ -179,8 +179,8 @@ inline void expect_counts_add_up(const std::string& json, const std::string& tex
   EXPECT_NE(text.find(counts), std::string::npos) << "no '" << counts << "' in: " << text;
 }
 
-// A test that runs the binary, with a fresh scratch folder: work/ for the test's
-// files, capture/ for the runs' stdout and stderr; removed afterwards.
+// A test that runs the binary, with a fresh scratch folder (scratch_dir): work/ for
+// the test's files, capture/ for the runs' stdout and stderr.
 class LccpBinaryTest : public ::testing::Test {
  protected:
   explicit LccpBinaryTest(std::string prefix) : prefix_(std::move(prefix)) {}
@@ -191,10 +191,6 @@ class LccpBinaryTest : public ::testing::Test {
     capture_ = root_ / "capture";
     fs::create_directories(work_);
     fs::create_directories(capture_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
   }
   RunResult run(const std::vector<std::string>& args, int timeout_seconds = kRunTimeoutSeconds) {
     return run_lccp(capture_, args, timeout_seconds);

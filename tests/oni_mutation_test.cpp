@@ -47,15 +47,13 @@ class OniMutationTest : public LccpBinaryTest {
   OniMutationTest() : LccpBinaryTest("lccp_oni_mutation") {}
 
   static void SetUpTestSuite() {
-    shared_ = new fs::path(fs::temp_directory_path() / ("lccp_oni_mutation_" + std::to_string(::getpid())));
+    shared_ = new fs::path(test::scratch_root() / "lccp_oni_mutation");
     fs::create_directories(*shared_);
     const RunResult r = run_lccp(*shared_, {"record", "--uri", "virtual://synthetic", "-o", small().string(), "--frames",
                                             "3", "--log-level", "warn"});
     recorded_ = r.exit_code == 0 && fs::exists(small());
   }
   static void TearDownTestSuite() {
-    std::error_code ignored;
-    fs::remove_all(*shared_, ignored);
     delete shared_;
   }
   static fs::path small() { return *shared_ / "small.oni"; }

@@ -52,15 +52,13 @@ class StreamCliTest : public LccpBinaryTest {
   static constexpr int kRecordedFrames = 15;
 
   static void SetUpTestSuite() {
-    shared_ = new fs::path(fs::temp_directory_path() / ("lccp_stream_cli_" + std::to_string(::getpid())));
+    shared_ = new fs::path(test::scratch_root() / "lccp_stream_cli");
     fs::create_directories(*shared_);
     record_result_ = new RunResult(run_lccp(*shared_, {"record", "--uri", "virtual://synthetic", "-o",
                                                        recording().string(), "--frames", std::to_string(kRecordedFrames),
                                                        "--log-level", "warn"}));
   }
   static void TearDownTestSuite() {
-    std::error_code ignored;
-    fs::remove_all(*shared_, ignored);
     delete shared_;
     delete record_result_;
   }

@@ -22,13 +22,18 @@ inline void write_bytes(const std::filesystem::path& path, const std::string& by
   ASSERT_TRUE(out.good()) << "cannot write " << path;
 }
 
-// A fresh, empty folder for the running test: <tmp>/<prefix>_<pid>_<suite>_<test>,
-// so tests can run in parallel processes.
+// The one folder of this test process's scratch files: <tmp>/lccp_tests_<pid>, so
+// tests can run in parallel processes. main() removes it when every test passed and
+// keeps it, naming it, when one failed (no_skip_main.cpp).
+inline std::filesystem::path scratch_root() {
+  return std::filesystem::temp_directory_path() / ("lccp_tests_" + std::to_string(::getpid()));
+}
+
+// A fresh, empty folder for the running test: <scratch_root>/<prefix>_<suite>_<test>.
 inline std::filesystem::path scratch_dir(const std::string& prefix) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      (prefix + "_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+      scratch_root() / (prefix + "_" + info->test_suite_name() + "_" + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
