@@ -363,6 +363,39 @@ TEST(SegmentTracker, VgaFrameWithShuffledLabelsKeepsEveryId) {
   std::printf("update() on a VGA frame (10 objects, 100 parts): median %.3f ms of 20\n", ms[10]);
 }
 
+// A cluttered frame: 40 x 40 small squares (2 cm, 3 cm apart), far more segments
+// than the counting table takes (1 600^2 pairs > 2^20, so the pairs are sorted),
+// moving 2 mm a frame with their labels shuffled: every square keeps its id.
+TEST(SegmentTracker, ClutterOfSixteenHundredSegmentsKeepsEveryId) {
+  constexpr int kSide = 40, kSquares = kSide * kSide;
+  const auto square = [](int k) {
+    const Eigen::Vector3f lo(0.03f * static_cast<float>(k % kSide), 0.03f * static_cast<float>(k / kSide), 1.0f);
+    Points points;
+    for (float a = 0; a <= 0.02f; a += 0.002f)
+      for (float b = 0; b <= 0.02f; b += 0.002f) points.push_back(lo + Eigen::Vector3f(a, b, 0));
+    return points;
+  };
+  std::vector<int> order(kSquares);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937 random(5);
+  SegmentTracker tracker;
+  Ids first(kSquares);
+  for (int f = 0; f < 4; ++f) {
+    std::shuffle(order.begin(), order.end(), random);
+    Scene scene;
+    std::vector<std::uint32_t> label(kSquares);
+    for (const int k : order) label[k] = scene.add(moved(square(k), Eigen::Vector3f(0.002f * f, 0, 0)));
+    const TrackedIds ids = tracker.update(scene.frame());
+    for (int k = 0; k < kSquares; ++k) {
+      if (f == 0) first[k] = ids.object_ids[label[k] - 1];
+      ASSERT_EQ(ids.object_ids[label[k] - 1], first[k]) << "frame " << f << " square " << k;
+    }
+    if (f > 0) {
+      EXPECT_TRUE(ids.new_ids.empty() && ids.gone_ids.empty()) << "frame " << f;
+    }
+  }
+}
+
 // The VGA scene over frames in which an object leaves and comes back: the same
 // ids, new and gone, with 1 and 2 oneTBB threads.
 TEST(SegmentTracker, SameIdsWithOneAndTwoThreads) {
