@@ -1,12 +1,14 @@
 #include "lccp/core/segments.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 #include <optional>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
 
+#include "cell_keys.hpp"
 #include "lccp/core/union_find.hpp"
 
 namespace lccp {
@@ -25,16 +27,41 @@ std::vector<std::uint32_t> convex_components(std::size_t supervoxel_count, const
 
 namespace {
 
+// The segments as dense nodes 0..S-1 in ascending id: each node's id, its member
+// supervoxels (ascending) and each supervoxel's node. One stable radix sort of
+// (id, supervoxel): linear in the supervoxels, where a search per look-up is not
+// (a room-scale frame has some 50 000 supervoxels and 130 000 edges).
+struct SegmentNodes {
+  std::vector<std::uint64_t> ids;
+  CompressedRows members;
+  std::vector<std::uint32_t> node_of_supervoxel;
+};
+
+SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
+  const std::uint32_t largest_id = *std::max_element(segment_of.begin(), segment_of.end());
+  const detail::PackedKeys packing{static_cast<int>(std::bit_width(segment_of.size() - 1)),
+                                   static_cast<int>(std::bit_width(largest_id))};
+  std::vector<std::uint64_t> values(segment_of.size());
+  for (std::uint32_t sv = 0; sv < segment_of.size(); ++sv) values[sv] = packing.pack(segment_of[sv], sv);
+  detail::radix_sort(values, packing);
+  SegmentNodes nodes;
+  detail::group_runs(values, packing, nodes.ids, nodes.members);
+  nodes.node_of_supervoxel.resize(segment_of.size());
+  for (std::uint32_t node = 0; node < nodes.members.rows(); ++node) {
+    for (const std::uint32_t* sv = nodes.members.begin(node); sv != nodes.members.end(node); ++sv) {
+      nodes.node_of_supervoxel[*sv] = node;
+    }
+  }
+  return nodes;
+}
+
 // Segments as dense nodes with sizes (in supervoxels) and neighbour lists.
 struct SegmentGraph {
-  std::vector<std::uint32_t> ids;  // segment id of each node, ascending
+  SegmentNodes nodes;
   std::vector<std::uint32_t> size;
   std::vector<std::vector<std::uint32_t>> neighbors;
   std::vector<std::uint32_t> merged_into;  // node -> node it merged into (itself if alive)
 
-  std::uint32_t node_of(std::uint32_t id) const {
-    return static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
-  }
   std::uint32_t alive(std::uint32_t node) {
     while (merged_into[node] != node) node = merged_into[node] = merged_into[merged_into[node]];
     return node;
@@ -43,19 +70,18 @@ struct SegmentGraph {
 
 SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, const std::vector<Edge>& edges) {
   SegmentGraph g;
-  g.ids = segment_of;
-  std::sort(g.ids.begin(), g.ids.end());
-  g.ids.erase(std::unique(g.ids.begin(), g.ids.end()), g.ids.end());
-  g.size.assign(g.ids.size(), 0);
-  for (std::uint32_t id : segment_of) ++g.size[g.node_of(id)];
-  g.neighbors.resize(g.ids.size());
+  g.nodes = segment_nodes(segment_of);
+  const std::size_t count = g.nodes.ids.size();
+  g.size.resize(count);
+  for (std::size_t node = 0; node < count; ++node) g.size[node] = g.nodes.members.count(node);
+  g.neighbors.resize(count);
   for (const Edge& e : edges) {
-    const std::uint32_t a = g.node_of(segment_of[e.a]), b = g.node_of(segment_of[e.b]);
+    const std::uint32_t a = g.nodes.node_of_supervoxel[e.a], b = g.nodes.node_of_supervoxel[e.b];
     if (a == b) continue;
     g.neighbors[a].push_back(b);
     g.neighbors[b].push_back(a);
   }
-  g.merged_into.resize(g.ids.size());
+  g.merged_into.resize(count);
   std::iota(g.merged_into.begin(), g.merged_into.end(), 0u);
   return g;
 }
@@ -74,7 +100,7 @@ std::optional<std::uint32_t> largest_neighbor(SegmentGraph& g, std::uint32_t nod
 // One sweep over the small segments, smallest first; true if anything merged.
 bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter) {
   std::vector<std::uint32_t> small;
-  for (std::uint32_t node = 0; node < g.ids.size(); ++node) {
+  for (std::uint32_t node = 0; node < g.size.size(); ++node) {
     if (g.alive(node) == node && g.size[node] <= n_filter) small.push_back(node);
   }
   std::stable_sort(small.begin(), small.end(), [&](std::uint32_t a, std::uint32_t b) { return g.size[a] < g.size[b]; });
@@ -100,33 +126,27 @@ void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, con
   SegmentGraph g = build_segment_graph(segment_of_supervoxel, edges);
   while (merge_sweep(g, n_filter)) {
   }
-  for (std::uint32_t& id : segment_of_supervoxel) id = g.ids[g.alive(g.node_of(id))];
+  for (std::uint32_t sv = 0; sv < segment_of_supervoxel.size(); ++sv) {
+    segment_of_supervoxel[sv] = static_cast<std::uint32_t>(g.nodes.ids[g.alive(g.nodes.node_of_supervoxel[sv])]);
+  }
 }
 
 std::uint32_t relabel_by_size(std::vector<std::uint32_t>& segment_of_supervoxel) {
-  const std::size_t n = segment_of_supervoxel.size();
-  // Per segment id: (size, smallest member), gathered over dense nodes.
-  std::vector<std::uint32_t> ids = segment_of_supervoxel;
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  const auto node_of = [&](std::uint32_t id) {
-    return static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
-  };
-  std::vector<std::uint32_t> size(ids.size(), 0), first_member(ids.size(), static_cast<std::uint32_t>(n));
-  for (std::uint32_t sv = 0; sv < n; ++sv) {
-    const std::size_t node = node_of(segment_of_supervoxel[sv]);
-    ++size[node];
-    first_member[node] = std::min(first_member[node], sv);
-  }
-  std::vector<std::uint32_t> order(ids.size());
+  if (segment_of_supervoxel.empty()) return 0;
+  const SegmentNodes nodes = segment_nodes(segment_of_supervoxel);
+  const CompressedRows& members = nodes.members;
+  // Largest first, ties by smallest member (the first of its ascending members).
+  std::vector<std::uint32_t> order(members.rows());
   std::iota(order.begin(), order.end(), 0u);
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return std::tie(size[b], first_member[a]) < std::tie(size[a], first_member[b]);
+    return std::tuple(members.count(b), *members.begin(a)) < std::tuple(members.count(a), *members.begin(b));
   });
-  std::vector<std::uint32_t> dense(ids.size());
-  for (std::uint32_t rank = 0; rank < order.size(); ++rank) dense[order[rank]] = rank + 1;
-  for (std::uint32_t& id : segment_of_supervoxel) id = dense[node_of(id)];
-  return static_cast<std::uint32_t>(ids.size());
+  for (std::uint32_t rank = 0; rank < order.size(); ++rank) {
+    for (const std::uint32_t* sv = members.begin(order[rank]); sv != members.end(order[rank]); ++sv) {
+      segment_of_supervoxel[*sv] = rank + 1;
+    }
+  }
+  return static_cast<std::uint32_t>(order.size());
 }
 
 }  // namespace lccp
