@@ -116,6 +116,7 @@ class Grower {
 
   void plant(const std::vector<std::uint32_t>& seeds) {
     sums_.resize(seeds.size());
+    changed_.resize(seeds.size());
     for (std::uint32_t k = 0; k < seeds.size(); ++k) {
       owner_[seeds[k]] = k;
       claim_[seeds[k]] = 0.0f;
@@ -172,6 +173,7 @@ class Grower {
       if (owner_[v] != kNone) continue;
       const auto k = static_cast<std::uint32_t>(sums_.size());
       sums_.emplace_back();
+      changed_.push_back(0);
       owner_[v] = k;
       stack.push_back(v);
       while (!stack.empty()) {
@@ -232,6 +234,7 @@ class Grower {
   }
 
   void add_member(std::uint32_t k, std::uint32_t v, int sign) {
+    if (!changed_[k]) changed_[k] = 1, changed_list_.push_back(k);
     MemberSums& sum = sums_[k];
     sum.xyz += sign * grid_.centroids[v].cast<double>();
     sum.normal += sign * normals_[v].cast<double>();
@@ -241,10 +244,13 @@ class Grower {
 
   // Centres are the means of member voxel centroids and colours and the
   // normalized sum of member normals. Emptied supervoxels keep their last
-  // centre; no voxel can reach them any more.
+  // centre; no voxel can reach them any more. Only supervoxels whose members
+  // changed are recomputed: the others' sums, and so their centres, are as they were.
   void update_centres() {
     centres_.resize(sums_.size());
-    tbb::parallel_for(std::size_t{0}, sums_.size(), [&](std::size_t k) {
+    tbb::parallel_for(std::size_t{0}, changed_list_.size(), [&](std::size_t i) {
+      const std::uint32_t k = changed_list_[i];
+      changed_[k] = 0;
       const MemberSums& sum = sums_[k];
       if (sum.count == 0) return;
       Centre& centre = centres_[k];
@@ -253,6 +259,7 @@ class Grower {
       const double length = sum.normal.norm();
       centre.normal = length > 1e-6 ? Eigen::Vector3f((sum.normal / length).cast<float>()) : Eigen::Vector3f(-centre.xyz.normalized());
     });
+    changed_list_.clear();
   }
 
   const VoxelGrid& grid_;
@@ -264,6 +271,8 @@ class Grower {
   std::vector<std::uint32_t> next_owner_;  // the pass being computed (kept between passes)
   std::vector<float> next_claim_;
   std::vector<MemberSums> sums_;
+  std::vector<std::uint8_t> changed_;     // members changed since the centres were last computed
+  std::vector<std::uint32_t> changed_list_;  // those supervoxels, each once
   std::vector<Centre> centres_;
 };
 
