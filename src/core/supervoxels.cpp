@@ -318,13 +318,17 @@ std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelC
   // ball is occupied: 0.05 pi r^2 / v^2 voxels with r = s / 2.
   const float radius = 0.5f * seed_size;
   const float min_voxels = 0.05f * radius * radius * std::numbers::pi_v<float> / (voxel_size_m * voxel_size_m);
-  std::vector<std::uint32_t> seeds(groups.keys.size(), kNone);
+  // Each cell's seed is one of its own voxels, so no voxel is two cells' seed:
+  // marked per voxel, then listed in voxel order (ascending, without a sort).
+  std::vector<std::uint8_t> is_seed(grid.size(), 0);
   tbb::parallel_for(std::size_t{0}, groups.keys.size(), [&](std::size_t c) {
     const std::uint32_t seed = nearest_to_cell_centre(grid, groups, c, seed_size);
-    if (has_voxels_within(grid, groups, keys, c, seed, radius, min_voxels)) seeds[c] = seed;
+    if (has_voxels_within(grid, groups, keys, c, seed, radius, min_voxels)) is_seed[seed] = 1;
   });
-  std::erase(seeds, kNone);
-  std::sort(seeds.begin(), seeds.end());
+  std::vector<std::uint32_t> seeds;
+  for (std::uint32_t v = 0; v < grid.size(); ++v) {
+    if (is_seed[v]) seeds.push_back(v);
+  }
   return seeds;
 }
 
