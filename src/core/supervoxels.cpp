@@ -234,7 +234,7 @@ class Grower {
   }
 
   void add_member(std::uint32_t k, std::uint32_t v, int sign) {
-    if (!changed_[k]) changed_[k] = 1, changed_list_.push_back(k);
+    changed_[k] = 1;
     MemberSums& sum = sums_[k];
     sum.xyz += sign * grid_.centroids[v].cast<double>();
     sum.normal += sign * normals_[v].cast<double>();
@@ -248,8 +248,8 @@ class Grower {
   // changed are recomputed: the others' sums, and so their centres, are as they were.
   void update_centres() {
     centres_.resize(sums_.size());
-    tbb::parallel_for(std::size_t{0}, changed_list_.size(), [&](std::size_t i) {
-      const std::uint32_t k = changed_list_[i];
+    tbb::parallel_for(std::size_t{0}, sums_.size(), [&](std::size_t k) {
+      if (!changed_[k]) return;
       changed_[k] = 0;
       const MemberSums& sum = sums_[k];
       if (sum.count == 0) return;
@@ -259,7 +259,6 @@ class Grower {
       const double length = sum.normal.norm();
       centre.normal = length > 1e-6 ? Eigen::Vector3f((sum.normal / length).cast<float>()) : Eigen::Vector3f(-centre.xyz.normalized());
     });
-    changed_list_.clear();
   }
 
   const VoxelGrid& grid_;
@@ -271,8 +270,7 @@ class Grower {
   std::vector<std::uint32_t> next_owner_;  // the pass being computed (kept between passes)
   std::vector<float> next_claim_;
   std::vector<MemberSums> sums_;
-  std::vector<std::uint8_t> changed_;     // members changed since the centres were last computed
-  std::vector<std::uint32_t> changed_list_;  // those supervoxels, each once
+  std::vector<std::uint8_t> changed_;  // members changed since the centres were last computed
   std::vector<Centre> centres_;
 };
 
