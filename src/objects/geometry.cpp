@@ -139,7 +139,14 @@ struct Footprint {
 struct Moments {
   double n = 0;
   Vec3 sum = Vec3::Zero();
-  Mat3 outer = Mat3::Zero();       // sum of p p^T
+  // The sum of p p^T, its upper triangle (xx, xy, xz, yy, yz, zz): it is
+  // symmetric, and p_i p_j is p_j p_i exactly, so the lower half is a copy.
+  Eigen::Matrix<double, 6, 1> outer = Eigen::Matrix<double, 6, 1>::Zero();
+  Mat3 outer_matrix() const {
+    Mat3 m;
+    m << outer[0], outer[1], outer[2], outer[1], outer[3], outer[4], outer[2], outer[4], outer[5];
+    return m;
+  }
   Footprint footprint;             // with a plane
 };
 
@@ -148,7 +155,8 @@ std::vector<Moments> segment_moments(const SegmentationWork& w, std::size_t K, c
     const Vec3 p = w.cloud.points[i].cast<double>();
     m.n += 1;
     m.sum += p;
-    m.outer.noalias() += p * p.transpose();
+    m.outer += Eigen::Matrix<double, 6, 1>(p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(),
+                                          p.z() * p.z());
     if (frame) m.footprint.fold(frame->in_plane(p), p.dot(frame->n));
   };
   const auto merge = [](Moments& into, const Moments& from) {
@@ -169,7 +177,7 @@ Principal principal_frame(const Moments& m) {
   if (m.n == 0) return {};
   Principal p;
   p.centroid = m.sum / m.n;
-  const Mat3 covariance = m.outer / m.n - p.centroid * p.centroid.transpose();
+  const Mat3 covariance = m.outer_matrix() / m.n - p.centroid * p.centroid.transpose();
   const Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);  // eigenvalues ascending
   p.axes = solver.eigenvectors().rowwise().reverse();
   p.axes.col(2) = p.axes.col(0).cross(p.axes.col(1));
