@@ -20,20 +20,21 @@ std::vector<Moments> centroid_moments(const VoxelGrid& grid) {
 
 // VCCS's neighbourhood: the voxel, then for each u in N[v] (closed) u itself
 // and all of N[u]. As sums: m(v) + sum_{u in N[v]} (2 m(u) + sum_{w in N(u)} m(w)).
-std::vector<Moments> two_ring_moments(const VoxelGrid& grid, const std::vector<Moments>& own) {
+// The sums replace the voxels' own moments in place: the second pass reads only
+// a voxel's own, the first pass (which reads its neighbours') is done by then.
+std::vector<Moments> two_ring_moments(const VoxelGrid& grid, std::vector<Moments> own) {
   std::vector<Moments> one_ring(grid.size());
   detail::parallel_for_each_index(grid.size(), [&](std::size_t u) {
     Moments m = 2.0 * own[u];
     for (const std::uint32_t* w = grid.neighbors.begin(u); w != grid.neighbors.end(u); ++w) m += own[*w];
     one_ring[u] = m;
   });
-  std::vector<Moments> two_ring(grid.size());
   detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
     Moments m = own[v] + one_ring[v];
     for (const std::uint32_t* u = grid.neighbors.begin(v); u != grid.neighbors.end(v); ++u) m += one_ring[*u];
-    two_ring[v] = m;
+    own[v] = m;
   });
-  return two_ring;
+  return own;
 }
 
 // Calls take(v, covariance, normal) for every voxel with the least-variance
