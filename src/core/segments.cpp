@@ -27,14 +27,13 @@ std::vector<std::uint32_t> convex_components(std::size_t supervoxel_count, const
 
 namespace {
 
-// The segments as dense nodes 0..S-1 in ascending id: each node's id, its member
-// supervoxels (ascending) and each supervoxel's node. One stable radix sort of
-// (id, supervoxel): linear in the supervoxels, where a search per look-up is not
-// (a room-scale frame has some 50 000 supervoxels and 130 000 edges).
+// The segments as dense nodes 0..S-1 in ascending id: each node's id and its
+// member supervoxels (ascending). One stable radix sort of (id, supervoxel):
+// linear in the supervoxels, where a search per look-up is not (a room-scale
+// frame has some 50 000 supervoxels and 130 000 edges).
 struct SegmentNodes {
   std::vector<std::uint64_t> ids;
   CompressedRows members;
-  std::vector<std::uint32_t> node_of_supervoxel;
 };
 
 SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
@@ -46,18 +45,13 @@ SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
   detail::radix_sort(values, packing);
   SegmentNodes nodes;
   detail::group_runs(values, packing, nodes.ids, nodes.members);
-  nodes.node_of_supervoxel.resize(segment_of.size());
-  for (std::uint32_t node = 0; node < nodes.members.rows(); ++node) {
-    for (const std::uint32_t* sv = nodes.members.begin(node); sv != nodes.members.end(node); ++sv) {
-      nodes.node_of_supervoxel[*sv] = node;
-    }
-  }
   return nodes;
 }
 
 // Segments as dense nodes with sizes (in supervoxels) and neighbour lists.
 struct SegmentGraph {
   SegmentNodes nodes;
+  std::vector<std::uint32_t> node_of_supervoxel;
   std::vector<std::uint32_t> size;
   std::vector<std::vector<std::uint32_t>> neighbors;
   std::vector<std::uint32_t> merged_into;  // node -> node it merged into (itself if alive)
@@ -73,10 +67,16 @@ SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, c
   g.nodes = segment_nodes(segment_of);
   const std::size_t count = g.nodes.ids.size();
   g.size.resize(count);
-  for (std::size_t node = 0; node < count; ++node) g.size[node] = g.nodes.members.count(node);
+  g.node_of_supervoxel.resize(segment_of.size());
+  for (std::uint32_t node = 0; node < count; ++node) {
+    g.size[node] = g.nodes.members.count(node);
+    for (const std::uint32_t* sv = g.nodes.members.begin(node); sv != g.nodes.members.end(node); ++sv) {
+      g.node_of_supervoxel[*sv] = node;
+    }
+  }
   g.neighbors.resize(count);
   for (const Edge& e : edges) {
-    const std::uint32_t a = g.nodes.node_of_supervoxel[e.a], b = g.nodes.node_of_supervoxel[e.b];
+    const std::uint32_t a = g.node_of_supervoxel[e.a], b = g.node_of_supervoxel[e.b];
     if (a == b) continue;
     g.neighbors[a].push_back(b);
     g.neighbors[b].push_back(a);
@@ -127,7 +127,7 @@ void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, con
   while (merge_sweep(g, n_filter)) {
   }
   for (std::uint32_t sv = 0; sv < segment_of_supervoxel.size(); ++sv) {
-    segment_of_supervoxel[sv] = static_cast<std::uint32_t>(g.nodes.ids[g.alive(g.nodes.node_of_supervoxel[sv])]);
+    segment_of_supervoxel[sv] = static_cast<std::uint32_t>(g.nodes.ids[g.alive(g.node_of_supervoxel[sv])]);
   }
 }
 
