@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -109,6 +110,54 @@ TEST(Supervoxels, FlatPatchEuclideanBinning) {
   check_supervoxels(s);
   EXPECT_GE(s.sv.size(), 4u);
   EXPECT_LE(s.sv.size(), 25u);
+}
+
+// Beyond the paper (SupervoxelConfig::depth_scaled_seeds). A 1.6 m square facing
+// the sensor at 4 m, P1: camera cells there are v z = 2 cm wide, about 80 x 80
+// voxels on the square. VCCS's 2 cm seed grid gives nearly every voxel its own
+// seed, so a "supervoxel" is one voxel. With the key, beyond z0 = s / (4 v) = 1 m
+// seeds are 4 cells (8 cm) apart: at most 21 x 21 = 441 seed cells meet the
+// square, at least 19 x 19 lie inside it, and a ring of them may be swallowed in
+// growth (>= 17 x 17 = 289); each holds about 4 x 4 voxels.
+TEST(Supervoxels, SeedsFarAwaySpanFourCameraCells) {
+  const auto scene = test::render({test::fronto_parallel_rect(4.0, 1.6)});
+  LccpConfig cfg;  // P1, camera cells: the cloud is organized
+  cfg.supervoxels.depth_scaled_seeds = false;
+  const Stages paper = run(scene.cloud, cfg);
+  check_supervoxels(paper);
+  ASSERT_EQ(paper.grid.binning, Binning::camera);
+  EXPECT_GT(paper.grid.size(), 6000u);
+  EXPECT_LT(paper.grid.size(), 7000u);
+  EXPECT_LT(static_cast<double>(paper.grid.size()) / paper.sv.size(), 1.5) << paper.sv.size() << " supervoxels";
+
+  cfg.supervoxels.depth_scaled_seeds = true;
+  const Stages scaled = run(scene.cloud, cfg);
+  check_supervoxels(scaled);
+  EXPECT_EQ(scaled.grid.size(), paper.grid.size());
+  EXPECT_GE(scaled.sv.size(), 289u);
+  EXPECT_LE(scaled.sv.size(), 441u);
+  EXPECT_LE(scaled.sv.size(), scaled.seeds.size());
+  EXPECT_GT(static_cast<double>(scaled.grid.size()) / scaled.sv.size(), 12.0) << scaled.sv.size() << " supervoxels";
+}
+
+// Nearer than z0, and with cubic voxels at any depth, the key changes nothing:
+// a square tilted through 0.6-0.95 m (camera cells), and the far square above
+// in 2 cm cubes.
+TEST(Supervoxels, DepthScaledSeedsChangeNothingNearerThanZ0OrInCubes) {
+  const auto near = test::render({test::tilted_rect(0.78, 0.4, 0, 60)});
+  const auto far = test::render({test::fronto_parallel_rect(4.0, 1.6)});
+  LccpConfig camera, cubes;
+  cubes.voxels = VoxelConfig{0.005f, Binning::euclidean};
+  for (const auto& [cloud, base] : {std::pair{near.cloud, camera}, std::pair{far.cloud, cubes}}) {
+    LccpConfig off = base, on = base;
+    off.supervoxels.depth_scaled_seeds = false;
+    on.supervoxels.depth_scaled_seeds = true;
+    const Stages a = run(cloud, off), b = run(cloud, on);
+    ASSERT_GT(a.grid.size(), 1000u);
+    EXPECT_EQ(a.seeds, b.seeds);
+    EXPECT_EQ(a.sv.supervoxel_of_voxel, b.sv.supervoxel_of_voxel);
+    EXPECT_EQ(a.sv.centroids, b.sv.centroids);
+  }
 }
 
 TEST(Supervoxels, ConcaveCornerDoesNotMixPlanes) {

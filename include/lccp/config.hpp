@@ -29,8 +29,16 @@ struct NormalConfig {
   bool crease_preserving = false;
 };
 
+// depth_scaled_seeds, beyond the paper (docs/ARCHITECTURE.md, departures): camera
+// cells grow with depth (side v z, z in metres) while VCCS's seed grid does not, so
+// beyond z0 = s / (4 v) a seed cell spans fewer than the 4 voxels of the paper's
+// finest patch (P1: s = 4 v), and from z = s / v on each voxel is a supervoxel of
+// its own. With the key, seeds there are 4 camera cells apart (s z / z0) and
+// growth measures distance in that spacing. Nearer than z0, and with cubic
+// voxels, nothing changes. P1: z0 = 1 m; P2: 2 m.
 struct SupervoxelConfig {
   float seed_size_m = 0.02f;   // s: seed grid spacing
+  bool depth_scaled_seeds = true;
   float spatial_weight = 1.0f; // w_s, per seed_size_m of distance
   float normal_weight = 4.0f;  // w_n, on 1 - |n1 . n2|
   float color_weight = 0.0f;   // w_c, on |rgb1 - rgb2| / 255

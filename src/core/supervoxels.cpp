@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <numbers>
 
@@ -20,9 +21,34 @@ using detail::Cell;
 constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr float kUnreached = std::numeric_limits<float>::infinity();
 
+// The seed spacing at depth z: s, or with SupervoxelConfig::depth_scaled_seeds and
+// camera cells, s z / z0 beyond z0 = s / (4 v) (4 camera cells of side v z).
+class SeedSpacing {
+ public:
+  SeedSpacing(const SupervoxelConfig& config, float voxel_size_m, Binning binning)
+      : seed_size_(config.seed_size_m),
+        z0_(config.depth_scaled_seeds && binning == Binning::camera ? config.seed_size_m / (4.0f * voxel_size_m)
+                                                                    : kUnreached) {}
+
+  float at(float z) const { return z > z0_ ? seed_size_ * (z / z0_) : seed_size_; }  // metres
+
+  // A point's place in a grid whose cells are at(z) wide: beyond z0, x and y
+  // scaled by s / at(z) and z by z0 (1 + ln(z / z0)), whose slope s / at(z)
+  // meets 1 at z0. Nearer, the point itself.
+  Eigen::Vector3f grid_position(const Eigen::Vector3f& p) const {
+    if (!(p.z() > z0_)) return p;
+    const float ratio = p.z() / z0_;
+    return {p.x() / ratio, p.y() / ratio, z0_ * (1.0f + std::log(ratio))};
+  }
+
+ private:
+  float seed_size_;
+  float z0_;  // infinite: s everywhere, as VCCS
+};
+
 // ---- seeding ------------------------------------------------------------------
 
-// Voxels grouped by the seed-grid cell their centroid falls in, sorted by cell key.
+// Voxels grouped by the seed-grid cell their grid position falls in, sorted by cell key.
 struct SeedCells {
   std::vector<std::uint64_t> keys;  // one per occupied cell, ascending
   std::vector<Cell> cells;
@@ -63,14 +89,16 @@ bool any_cell_around(const SeedCells& groups, const detail::CellKeys& keys, std:
   return false;
 }
 
-// The member voxel nearest the centre of seed cell c (ties: smaller id).
-// (VCCS searches all voxels; on mOSD P1 the cell alone gives WOv 0.959 against 0.958.)
-std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& groups, std::size_t c, float seed_size) {
+// The member voxel nearest the centre of seed cell c (ties: smaller id), by
+// the voxels' grid positions. (VCCS searches all voxels; on mOSD P1 the cell
+// alone gives WOv 0.959 against 0.958.)
+std::uint32_t nearest_to_cell_centre(const std::vector<Eigen::Vector3f>& positions, const SeedCells& groups,
+                                     std::size_t c, float seed_size) {
   const Eigen::Vector3f centre = (groups.cells[c].cast<float>() + 0.5f) * seed_size;
   std::uint32_t best = kNone;
   float best_distance = std::numeric_limits<float>::infinity();
   for (const std::uint32_t* v = groups.voxels.begin(c); v != groups.voxels.end(c); ++v) {
-    const float d = (grid.centroids[*v] - centre).squaredNorm();
+    const float d = (positions[*v] - centre).squaredNorm();
     if (d < best_distance) {
       best_distance = d;
       best = *v;
@@ -80,13 +108,13 @@ std::uint32_t nearest_to_cell_centre(const VoxelGrid& grid, const SeedCells& gro
 }
 
 // Whether more than `enough` voxels lie within `radius` (<= s / 2) of voxel
-// `seed`, which lies in or around seed cell c.
-bool has_voxels_within(const VoxelGrid& grid, const SeedCells& groups, const detail::CellKeys& keys,
+// `seed`, which lies in or around seed cell c (grid positions).
+bool has_voxels_within(const std::vector<Eigen::Vector3f>& positions, const SeedCells& groups, const detail::CellKeys& keys,
                        std::size_t c, std::uint32_t seed, float radius, float enough) {
   float count = 0;
   return any_cell_around(groups, keys, c, [&](std::size_t cell) {
     for (const std::uint32_t* v = groups.voxels.begin(cell); v != groups.voxels.end(cell); ++v) {
-      count += (grid.centroids[*v] - grid.centroids[seed]).squaredNorm() <= radius * radius;
+      count += (positions[*v] - positions[seed]).squaredNorm() <= radius * radius;
     }
     return count > enough;
   });
@@ -98,6 +126,7 @@ struct Centre {
   Eigen::Vector3f xyz = Eigen::Vector3f::Zero();
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();
   Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
+  float spacing_m = 0;  // the seed spacing at its depth, s in VCCS
 };
 
 // Running sums over a supervoxel's member voxels, updated as voxels come and go.
@@ -110,9 +139,10 @@ struct MemberSums {
 
 class Grower {
  public:
-  Grower(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& normals, const SupervoxelConfig& config)
-      : grid_(grid), normals_(normals), config_(config), owner_(grid.size(), kNone), claim_(grid.size(), kUnreached),
-        absorbed_(grid.size(), 0) {}
+  Grower(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& normals, const SupervoxelConfig& config,
+         const SeedSpacing& spacing)
+      : grid_(grid), normals_(normals), config_(config), spacing_(spacing), owner_(grid.size(), kNone),
+        claim_(grid.size(), kUnreached), absorbed_(grid.size(), 0) {}
 
   void plant(const std::vector<std::uint32_t>& seeds) {
     sums_.resize(seeds.size());
@@ -194,11 +224,11 @@ class Grower {
   Supervoxels finish();
 
  private:
-  // D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s   (VCCS distance)
+  // D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s   (VCCS distance; s at the centre's depth)
   float distance(std::size_t v, const Centre& c) const {
     const float colour = config_.color_weight > 0.0f ? (grid_.colors[v] - c.rgb).norm() / 255.0f : 0.0f;
     return config_.normal_weight * (1.0f - std::abs(normals_[v].dot(c.normal))) + config_.color_weight * colour +
-           config_.spatial_weight * (grid_.centroids[v] - c.xyz).norm() / config_.seed_size_m;
+           config_.spatial_weight * (grid_.centroids[v] - c.xyz).norm() / c.spacing_m;
   }
 
   // The nearest supervoxel among v's neighbours' other than v's own (ties:
@@ -256,6 +286,7 @@ class Grower {
       Centre& centre = centres_[k];
       centre.xyz = (sum.xyz / sum.count).cast<float>();
       centre.rgb = (sum.rgb / sum.count).cast<float>();
+      centre.spacing_m = spacing_.at(centre.xyz.z());
       const double length = sum.normal.norm();
       centre.normal = length > 1e-6 ? Eigen::Vector3f((sum.normal / length).cast<float>()) : Eigen::Vector3f(-centre.xyz.normalized());
     });
@@ -264,6 +295,7 @@ class Grower {
   const VoxelGrid& grid_;
   const std::vector<Eigen::Vector3f>& normals_;
   const SupervoxelConfig& config_;
+  const SeedSpacing spacing_;
   std::vector<std::uint32_t> owner_;
   std::vector<float> claim_;           // distance at which the owner claimed the voxel (VCCS keeps it)
   std::vector<std::uint8_t> absorbed_; // joined after growth: labelled, but no part of the patch
@@ -297,12 +329,15 @@ Supervoxels Grower::finish() {
 std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelConfig& config, float voxel_size_m) {
   if (grid.size() == 0) return {};
   const float seed_size = config.seed_size_m;
+  const SeedSpacing spacing(config, voxel_size_m, grid.binning);
+  std::vector<Eigen::Vector3f> positions(grid.size());
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) { positions[v] = spacing.grid_position(grid.centroids[v]); });
   std::vector<Cell> cell_of_voxel(grid.size());
   Cell min_cell = Cell::Constant(std::numeric_limits<int>::max());
   Cell max_cell = Cell::Constant(std::numeric_limits<int>::min());
-  // |centroid| <= max_coordinate_m <= v * 2^19 and s >= v (validate), so cells fit an int.
+  // |position| <= |centroid| <= max_coordinate_m <= v * 2^19 and s >= v (validate), so cells fit an int.
   for (std::size_t v = 0; v < grid.size(); ++v) {
-    cell_of_voxel[v] = (grid.centroids[v] / seed_size).array().floor().cast<int>();
+    cell_of_voxel[v] = (positions[v] / seed_size).array().floor().cast<int>();
     min_cell = min_cell.min(cell_of_voxel[v]);
     max_cell = max_cell.max(cell_of_voxel[v]);
   }
@@ -313,15 +348,16 @@ std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelC
   const SeedCells groups = group_by_seed_cell(cell_of_voxel, keys);
 
   // VCCS keeps a seed if more than 1/20 of a planar slice through the search
-  // ball is occupied: 0.05 pi r^2 / v^2 voxels with r = s / 2.
+  // ball is occupied: 0.05 pi r^2 / v^2 voxels with r = s / 2 (in grid
+  // positions: beyond z0, r is 2 camera cells, as s / 2 is 2 voxels at P1).
   const float radius = 0.5f * seed_size;
   const float min_voxels = 0.05f * radius * radius * std::numbers::pi_v<float> / (voxel_size_m * voxel_size_m);
   // Each cell's seed is one of its own voxels, so no voxel is two cells' seed:
   // marked per voxel, then listed in voxel order (ascending, without a sort).
   std::vector<std::uint8_t> is_seed(grid.size(), 0);
   tbb::parallel_for(std::size_t{0}, groups.keys.size(), [&](std::size_t c) {
-    const std::uint32_t seed = nearest_to_cell_centre(grid, groups, c, seed_size);
-    if (has_voxels_within(grid, groups, keys, c, seed, radius, min_voxels)) is_seed[seed] = 1;
+    const std::uint32_t seed = nearest_to_cell_centre(positions, groups, c, seed_size);
+    if (has_voxels_within(positions, groups, keys, c, seed, radius, min_voxels)) is_seed[seed] = 1;
   });
   std::vector<std::uint32_t> seeds;
   for (std::uint32_t v = 0; v < grid.size(); ++v) {
@@ -333,7 +369,7 @@ std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelC
 Supervoxels grow_supervoxels(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& voxel_normals,
                              const std::vector<std::uint32_t>& seeds, const SupervoxelConfig& config,
                              float voxel_size_m) {
-  Grower grower(grid, voxel_normals, config);
+  Grower grower(grid, voxel_normals, config, SeedSpacing(config, voxel_size_m, grid.binning));
   grower.plant(seeds);
   // VCCS: int(1.8 s / v) - 1 passes, enough to cover the seed spacing.
   const int passes = growth_passes(config.seed_size_m, voxel_size_m);

@@ -109,8 +109,8 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 33>& keys() {
-  static const std::array<Key, 33> table{
+const std::array<Key, 34>& keys() {
+  static const std::array<Key, 34> table{
       float_key("region_min_x_m", [](auto& c) -> auto& { return c.region.min_x_m; },
                 "region of interest: points outside the box are not segmented (metres; -inf: unbounded)"),
       float_key("region_max_x_m", [](auto& c) -> auto& { return c.region.max_x_m; }, "region of interest, largest x (inf: unbounded)"),
@@ -137,6 +137,8 @@ const std::array<Key, 33>& keys() {
       bool_key("crease_preserving_normals", [](auto& c) -> auto& { return c.normals.crease_preserving; },
                "beyond the paper: normals near a crease from the flattest neighbourhood they lie on (true/false)"),
       float_key("seed_size_m", [](auto& c) -> auto& { return c.supervoxels.seed_size_m; }, "supervoxel seed spacing s (metres)"),
+      bool_key("depth_scaled_seeds", [](auto& c) -> auto& { return c.supervoxels.depth_scaled_seeds; },
+               "beyond the paper: camera cells beyond s / (4 v) metres get seeds 4 cells apart (true/false)"),
       float_key("spatial_weight", [](auto& c) -> auto& { return c.supervoxels.spatial_weight; }, "w_s, per seed spacing of distance"),
       float_key("normal_weight", [](auto& c) -> auto& { return c.supervoxels.normal_weight; }, "w_n, on 1 - |n1.n2|"),
       float_key("color_weight", [](auto& c) -> auto& { return c.supervoxels.color_weight; }, "w_c, on |rgb1 - rgb2| / 255"),

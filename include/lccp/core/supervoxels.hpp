@@ -11,8 +11,9 @@
 namespace lccp {
 
 // Voxels that seed a supervoxel: per occupied cell of the seed grid (spacing
-// seed_size_m), the voxel nearest the cell centre, kept if enough voxels lie
-// within seed_size_m / 2 of it. Ascending voxel ids.
+// seed_size_m; with depth_scaled_seeds and camera cells, 4 cells beyond
+// z0 = s / (4 v)), the voxel nearest the cell centre, kept if enough voxels lie
+// within half a spacing of it. Ascending voxel ids.
 std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelConfig& config,
                                         float voxel_size_m);
 
@@ -29,7 +30,8 @@ struct Supervoxels {
 
 // Flow-constrained growth: int(1.8 s / v) - 1 synchronous passes in which every
 // voxel joins the neighbouring supervoxel with the smallest distance
-// D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s, then centroids are
+// D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s (s: the seed spacing
+// at the supervoxel centre's depth), then centroids are
 // recomputed; a voxel changes owner only for a distance below the one at which
 // it was claimed (VCCS). Voxels no supervoxel reached are absorbed: they take
 // the nearest neighbouring supervoxel's label but do not shape it or its
