@@ -24,7 +24,12 @@ Patch patch(double x, double y, double z, double nx, double ny, double nz) {
   return Patch{Eigen::Vector3f(float(x), float(y), float(z)), n.cast<float>()};
 }
 
-ConvexityConfig paper_config() { return ConvexityConfig{}; }  // beta 10, SC on, 60 / 25 / 0.25
+// beta 10, SC on, 60 / 25 / 0.25; PCL's smoothness check (beyond the paper) off
+ConvexityConfig paper_config() {
+  ConvexityConfig config;
+  config.smoothness_check = false;
+  return config;
+}
 constexpr PatchSizes kP1Sizes{0.005f, 0.02f};                  // v and s of P1
 
 // --- eq. (1): convexity criterion -------------------------------------------------------

@@ -57,7 +57,7 @@ auto with_threads(int n, F&& f) {
 
 struct StageOutputs {
   VoxelGrid grid;
-  std::vector<Eigen::Vector3f> voxel_normals;
+  VoxelNormals voxel_normals;
   std::vector<std::uint32_t> seeds;
   Supervoxels sv;
   std::vector<Edge> edges;
@@ -71,9 +71,9 @@ struct StageOutputs {
 StageOutputs run_stages(const PointCloud& cloud, const LccpConfig& cfg) {
   StageOutputs o;
   o.grid = voxelize(cloud, cfg.voxels);
-  o.voxel_normals = estimate_voxel_normals(o.grid, NormalConfig{});
+  o.voxel_normals = estimate_voxel_normals(o.grid, cfg.normals);
   o.seeds = select_seeds(o.grid, cfg.supervoxels, cfg.voxels.voxel_size_m);
-  o.sv = grow_supervoxels(o.grid, o.voxel_normals, o.seeds, cfg.supervoxels, cfg.voxels.voxel_size_m);
+  o.sv = grow_supervoxels(o.grid, o.voxel_normals, o.seeds, cfg);
   o.edges = supervoxel_adjacency(o.grid, o.sv);
   o.convex = classify_edges(o.edges, o.sv.centroids, o.sv.normals, cfg.convexity,
                             PatchSizes{cfg.voxels.voxel_size_m, cfg.supervoxels.seed_size_m});
@@ -120,7 +120,7 @@ void expect_identical(const StageOutputs& ref, const StageOutputs& got) {
   EXPECT_TRUE(same_rows(ref.grid.neighbors, got.grid.neighbors)) << "voxel neighbours";
   EXPECT_TRUE(same_bits(ref.grid.voxel_of_point, got.grid.voxel_of_point)) << "voxel_of_point";
   // Stage 2
-  EXPECT_TRUE(same_bits(ref.voxel_normals, got.voxel_normals)) << "voxel normals";
+  EXPECT_TRUE(same_bits(ref.voxel_normals.directions, got.voxel_normals.directions) && ref.voxel_normals.planar == got.voxel_normals.planar) << "voxel normals";
   // Stage 3
   EXPECT_TRUE(same_bits(ref.seeds, got.seeds)) << "seeds";
   EXPECT_TRUE(same_bits(ref.sv.supervoxel_of_voxel, got.sv.supervoxel_of_voxel)) << "supervoxel_of_voxel";

@@ -249,7 +249,7 @@ Segmented single_segment(std::vector<Eigen::Vector3f> points) {
   work.grid.points.offsets = {0, n};
   work.grid.points.items.resize(n);
   std::iota(work.grid.points.items.begin(), work.grid.points.items.end(), 0u);
-  work.normals = {Eigen::Vector3f(0, 0, -1)};
+  work.normals = {{Eigen::Vector3f(0, 0, -1)}, {1}};
   work.result.labels.assign(n, 1);
   work.result.segment_count = 1;
   return {std::move(cloud), std::move(work)};

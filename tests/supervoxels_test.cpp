@@ -19,7 +19,7 @@ namespace {
 
 struct Stages {
   VoxelGrid grid;
-  std::vector<Eigen::Vector3f> voxel_normals;
+  VoxelNormals voxel_normals;
   std::vector<std::uint32_t> seeds;
   Supervoxels sv;
 };
@@ -27,9 +27,9 @@ struct Stages {
 Stages run(const PointCloud& cloud, const LccpConfig& cfg = {}) {
   Stages s;
   s.grid = voxelize(cloud, cfg.voxels);
-  s.voxel_normals = estimate_voxel_normals(s.grid, NormalConfig{});
+  s.voxel_normals = estimate_voxel_normals(s.grid, cfg.normals);
   s.seeds = select_seeds(s.grid, cfg.supervoxels, cfg.voxels.voxel_size_m);
-  s.sv = grow_supervoxels(s.grid, s.voxel_normals, s.seeds, cfg.supervoxels, cfg.voxels.voxel_size_m);
+  s.sv = grow_supervoxels(s.grid, s.voxel_normals, s.seeds, cfg);
   return s;
 }
 
@@ -56,7 +56,7 @@ void check_supervoxels(const Stages& s) {
     ASSERT_LT(id, sv.size()) << "voxel " << v;
     ++count[id];
     sum[id] += g.centroids[v].cast<double>();
-    nsum[id] += s.voxel_normals[v].cast<double>();
+    nsum[id] += s.voxel_normals.directions[v].cast<double>();
   }
   for (std::size_t i = 0; i < sv.size(); ++i) {
     ASSERT_GT(count[i], 0u) << "empty supervoxel " << i;

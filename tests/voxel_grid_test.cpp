@@ -453,7 +453,7 @@ TEST(VoxelNormals, FrontoParallelPlaneFacesTheSensor) {
     SCOPED_TRACE(int(b));
     const VoxelGrid g = voxelize(scene.cloud, VoxelConfig{0.005f, b});
     ASSERT_GT(g.size(), 300u);  // ~20 x 20 voxels
-    const auto n = estimate_voxel_normals(g, NormalConfig{});
+    const auto n = estimate_voxel_normals(g, NormalConfig{}).directions;
     ASSERT_EQ(n.size(), g.size());
     expect_normals_within(n, {0, 0, -1}, 1.0);
   }
@@ -468,7 +468,7 @@ TEST(VoxelNormals, TiltedPlanesMatchAnalyticNormalTowardSensor) {
     const auto scene = test::render({r});
     for (Binning b : {Binning::automatic, Binning::euclidean}) {
       const VoxelGrid g = voxelize(scene.cloud, VoxelConfig{0.005f, b});
-      const auto n = estimate_voxel_normals(g, NormalConfig{});
+      const auto n = estimate_voxel_normals(g, NormalConfig{}).directions;
       ASSERT_EQ(n.size(), g.size());
       expect_normals_within(n, expected, 1.0);
     }
@@ -486,7 +486,7 @@ TEST(VoxelNormals, IsolatedVoxelPointsToTheSensor) {
   const VoxelGrid g = voxelize(cloud, euclidean());
   const std::uint32_t v = g.voxel_of_point.back();
   ASSERT_EQ(g.neighbors.count(v), 0u);
-  const auto n = estimate_voxel_normals(g, NormalConfig{});
+  const auto n = estimate_voxel_normals(g, NormalConfig{}).directions;
   EXPECT_LT((n[v] - (-lonely.normalized())).norm(), 1e-5f) << n[v].transpose();
 }
 
@@ -550,8 +550,8 @@ TEST(VoxelNormals, CreasePreservingNormalsDoNotBlendTheTwoFacesOfACrease) {
     for (Binning b : {Binning::automatic, Binning::euclidean}) {
       SCOPED_TRACE(int(b));
       const VoxelGrid g = voxelize(scene.cloud, VoxelConfig{0.005f, b});
-      const auto blended = estimate_voxel_normals(g, NormalConfig{false});
-      const auto crisp = estimate_voxel_normals(g, NormalConfig{true});
+      const auto blended = estimate_voxel_normals(g, NormalConfig{false}).directions;
+      const auto crisp = estimate_voxel_normals(g, NormalConfig{true}).directions;
       EXPECT_GT(worst_at_crease(c, g, blended, 0.008), 20.0);
       EXPECT_LT(worst_at_crease(c, g, crisp, 0.008), 10.0);  // measured 24 and 5 deg
       // Away from the crease both are the PCA normal of a flat neighbourhood.
@@ -575,7 +575,7 @@ TEST(VoxelNormals, GivenPointNormalsAreAveragedNotFlipped) {
   }
   const VoxelGrid g = voxelize(h.cloud, euclidean());
   ASSERT_EQ(g.mean_normals.size(), g.size());
-  const auto n = estimate_voxel_normals(g, NormalConfig{});
+  const auto n = estimate_voxel_normals(g, NormalConfig{}).directions;
   ASSERT_EQ(n.size(), g.size());
   for (std::size_t v = 0; v < g.size(); ++v) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();

@@ -43,6 +43,15 @@ void validate_support(const SupportPlaneConfig& s) {
   require(s.iterations > 0 && s.iterations <= 100000u, "support_iterations", "in [1, 100000]", s.iterations);
 }
 
+void validate_sensor(const SensorConfig& s) {
+  require(in_range(s.focal_px, 1.0f, 1e5f), "sensor_focal_px", "in [1, 1e5]", s.focal_px);
+  require(in_range(s.baseline_m, 1e-4f, 10.0f), "sensor_baseline_m", "in [1e-4, 10]", s.baseline_m);
+  require(in_range(s.disparity_step_px, 0.0f, 100.0f), "sensor_disparity_step_px", "in [0, 100]", s.disparity_step_px);
+  require(in_range(s.axial_sigma_m, 0.0f, 1.0f), "sensor_axial_sigma_m", "in [0, 1]", s.axial_sigma_m);
+  require(in_range(s.axial_sigma_per_m2, 0.0f, 1.0f), "sensor_axial_sigma_per_m2", "in [0, 1]", s.axial_sigma_per_m2);
+  require(in_range(s.min_range_m, 0.0f, 100.0f), "sensor_min_range_m", "in [0, 100]", s.min_range_m);
+}
+
 void validate_region(const RegionConfig& r) {
   const auto axis = [](float low, float high, const char* min_key) {
     require(!std::isnan(low) && !std::isnan(high) && low < high, min_key,
@@ -58,6 +67,12 @@ void validate_region(const RegionConfig& r) {
 bool RegionConfig::bounded() const {
   return std::isfinite(min_x_m) || std::isfinite(max_x_m) || std::isfinite(min_y_m) || std::isfinite(max_y_m) ||
          std::isfinite(min_z_m) || std::isfinite(max_z_m);
+}
+
+float SensorConfig::depth_tolerance_m(float z_m) const {
+  const float z = std::max(z_m, min_range_m);
+  const float beyond = z - min_range_m;
+  return z * z * disparity_step_px / (focal_px * baseline_m) + 2.0f * (axial_sigma_m + axial_sigma_per_m2 * beyond * beyond);
 }
 
 void validate(const SceneConfig& c) {
@@ -83,6 +98,11 @@ void validate(const LccpConfig& c) {
   require(in_range(c.supervoxels.spatial_weight, 0.0f, 1e6f), "spatial_weight", ">= 0", c.supervoxels.spatial_weight);
   require(in_range(c.supervoxels.normal_weight, 0.0f, 1e6f), "normal_weight", ">= 0", c.supervoxels.normal_weight);
   require(in_range(c.supervoxels.color_weight, 0.0f, 1e6f), "color_weight", ">= 0", c.supervoxels.color_weight);
+  require(in_range(c.normals.planar_variation, 0.0f, 1.0f / 3.0f), "planar_variation", "in [0, 1/3]",
+          c.normals.planar_variation);
+  require(in_range(c.supervoxels.max_normal_angle_deg, 0.0f, 90.0f), "max_normal_angle_deg", "in [0, 90]",
+          c.supervoxels.max_normal_angle_deg);
+  validate_sensor(c.sensor);
   require(in_range(c.convexity.beta_thresh_deg, 0.0f, 180.0f), "beta_thresh_deg", "in [0, 180]",
           c.convexity.beta_thresh_deg);
   require(in_range(c.convexity.theta_max_deg, 0.0f, 90.0f), "theta_max_deg", "in [0, 90]", c.convexity.theta_max_deg);

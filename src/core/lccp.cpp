@@ -85,7 +85,7 @@ void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
     case Stage::voxelize: w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip); break;
     case Stage::normals: w.normals = estimate_voxel_normals(w.grid, config_.normals); break;
     case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;
-    case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, sv, v); break;
+    case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, config_); break;
     case Stage::adjacency: w.edges = supervoxel_adjacency(w.grid, w.supervoxels); break;
     case Stage::classify:
       w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity,

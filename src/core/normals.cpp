@@ -101,8 +101,8 @@ bool lies_on(const LocalPlane& plane, const Eigen::Vector3f& x) {
 // equally flat ones), turned toward the sensor. Both tests are evaluated for
 // every neighbour and the choice is a select, not a branch: which neighbours
 // pass is unpredictable.
-std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std::vector<LocalPlane>& planes) {
-  std::vector<Eigen::Vector3f> normals(grid.size());
+VoxelNormals crease_preserving(const VoxelGrid& grid, const std::vector<LocalPlane>& planes, float planar_variation) {
+  VoxelNormals result{std::vector<Eigen::Vector3f>(grid.size()), std::vector<std::uint8_t>(grid.size())};
   detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
     const Eigen::Vector3f& x = grid.centroids[v];
     std::size_t best = v;
@@ -115,27 +115,33 @@ std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std:
       flattest = better ? planes[*u].variation : flattest;
     }
     const Eigen::Vector3f& n = planes[best].normal;
-    normals[v] = n.dot(x) > 0 ? Eigen::Vector3f(-n) : n;
+    result.directions[v] = n.dot(x) > 0 ? Eigen::Vector3f(-n) : n;
+    result.planar[v] = flattest <= planar_variation;
   });
-  return normals;
+  return result;
+}
+
+// Each voxel's own neighbourhood's plane.
+VoxelNormals own_planes(const std::vector<LocalPlane>& planes, float planar_variation) {
+  VoxelNormals result{std::vector<Eigen::Vector3f>(planes.size()), std::vector<std::uint8_t>(planes.size())};
+  detail::parallel_for_each_index(planes.size(), [&](std::size_t v) {
+    result.directions[v] = planes[v].normal;
+    result.planar[v] = planes[v].variation <= planar_variation;
+  });
+  return result;
 }
 
 }  // namespace
 
-std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const NormalConfig& config) {
-  if (!grid.mean_normals.empty()) return given_normals(grid);
+VoxelNormals estimate_voxel_normals(const VoxelGrid& grid, const NormalConfig& config) {
+  if (!grid.mean_normals.empty()) return {given_normals(grid), std::vector<std::uint8_t>(grid.size(), 1)};
   const std::vector<Moments> neighbourhoods = two_ring_moments(grid, centroid_moments(grid));
-  if (config.crease_preserving) {
-    std::vector<LocalPlane> planes(grid.size());
-    for_each_pca_normal(grid, neighbourhoods, [&](std::size_t v, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& n) {
-      planes[v] = local_plane(neighbourhoods[v], covariance, n);
-    });
-    return crease_preserving(grid, planes);
-  }
-  std::vector<Eigen::Vector3f> normals(grid.size());
-  for_each_pca_normal(grid, neighbourhoods,
-                      [&](std::size_t v, const Eigen::Matrix3d&, const Eigen::Vector3f& n) { normals[v] = n; });
-  return normals;
+  std::vector<LocalPlane> planes(grid.size());
+  for_each_pca_normal(grid, neighbourhoods, [&](std::size_t v, const Eigen::Matrix3d& covariance, const Eigen::Vector3f& n) {
+    planes[v] = local_plane(neighbourhoods[v], covariance, n);
+  });
+  return config.crease_preserving ? crease_preserving(grid, planes, config.planar_variation)
+                                  : own_planes(planes, config.planar_variation);
 }
 
 }  // namespace lccp

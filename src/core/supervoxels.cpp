@@ -12,6 +12,8 @@
 #include "cell_keys.hpp"
 #include "lccp/error.hpp"
 #include "parallel.hpp"
+#include "seed_spacing.hpp"
+#include "supervoxel_flood.hpp"
 
 namespace lccp {
 namespace {
@@ -20,31 +22,7 @@ using detail::Cell;
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr float kUnreached = std::numeric_limits<float>::infinity();
-
-// The seed spacing at depth z: s, or with SupervoxelConfig::depth_scaled_seeds and
-// camera cells, s z / z0 beyond z0 = s / (4 v) (4 camera cells of side v z).
-class SeedSpacing {
- public:
-  SeedSpacing(const SupervoxelConfig& config, float voxel_size_m, Binning binning)
-      : seed_size_(config.seed_size_m),
-        z0_(config.depth_scaled_seeds && binning == Binning::camera ? config.seed_size_m / (4.0f * voxel_size_m)
-                                                                    : kUnreached) {}
-
-  float at(float z) const { return z > z0_ ? seed_size_ * (z / z0_) : seed_size_; }  // metres
-
-  // A point's place in a grid whose cells are at(z) wide: beyond z0, x and y
-  // scaled by s / at(z) and z by z0 (1 + ln(z / z0)), whose slope s / at(z)
-  // meets 1 at z0. Nearer, the point itself.
-  Eigen::Vector3f grid_position(const Eigen::Vector3f& p) const {
-    if (!(p.z() > z0_)) return p;
-    const float ratio = p.z() / z0_;
-    return {p.x() / ratio, p.y() / ratio, z0_ * (1.0f + std::log(ratio))};
-  }
-
- private:
-  float seed_size_;
-  float z0_;  // infinite: s everywhere, as VCCS
-};
+using detail::SeedSpacing;
 
 // ---- seeding ------------------------------------------------------------------
 
@@ -366,10 +344,14 @@ std::vector<std::uint32_t> select_seeds(const VoxelGrid& grid, const SupervoxelC
   return seeds;
 }
 
-Supervoxels grow_supervoxels(const VoxelGrid& grid, const std::vector<Eigen::Vector3f>& voxel_normals,
-                             const std::vector<std::uint32_t>& seeds, const SupervoxelConfig& config,
-                             float voxel_size_m) {
-  Grower grower(grid, voxel_normals, config, SeedSpacing(config, voxel_size_m, grid.binning));
+Supervoxels grow_supervoxels(const VoxelGrid& grid, const VoxelNormals& voxel_normals,
+                             const std::vector<std::uint32_t>& seeds, const LccpConfig& lccp_config) {
+  if (lccp_config.supervoxels.growth == Growth::flood) {
+    return detail::flood_supervoxels(grid, voxel_normals, seeds, lccp_config);
+  }
+  const SupervoxelConfig& config = lccp_config.supervoxels;
+  const float voxel_size_m = lccp_config.voxels.voxel_size_m;
+  Grower grower(grid, voxel_normals.directions, config, SeedSpacing(config, voxel_size_m, grid.binning));
   grower.plant(seeds);
   // VCCS: int(1.8 s / v) - 1 passes, enough to cover the seed spacing.
   const int passes = growth_passes(config.seed_size_m, voxel_size_m);

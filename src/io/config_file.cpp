@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -73,6 +74,12 @@ Binning parse_binning(std::string_view key, const std::string& text) {
   throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not auto, euclidean or camera");
 }
 
+Growth parse_growth(std::string_view key, const std::string& text) {
+  if (text == "flood") return Growth::flood;
+  if (text == "vccs") return Growth::vccs;
+  throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not flood or vccs");
+}
+
 std::string show(float value) {
   std::ostringstream out;
   out << value;
@@ -109,8 +116,9 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 34>& keys() {
-  static const std::array<Key, 34> table{
+// What is segmented: the region of interest and the support plane.
+std::vector<Key> scene_keys() {
+  return {
       float_key("region_min_x_m", [](auto& c) -> auto& { return c.region.min_x_m; },
                 "region of interest: points outside the box are not segmented (metres; -inf: unbounded)"),
       float_key("region_max_x_m", [](auto& c) -> auto& { return c.region.max_x_m; }, "region of interest, largest x (inf: unbounded)"),
@@ -130,15 +138,28 @@ const std::array<Key, 34>& keys() {
       float_key("support_min_share", [](auto& c) -> auto& { return c.support.min_inlier_share; },
                 "fewer inliers (share of finite points): no plane"),
       count_key("support_iterations", [](auto& c) -> auto& { return c.support.iterations; }, "RANSAC hypotheses"),
+  };
+}
+
+// The method, stage by stage: voxels, normals, supervoxels, convexity, the noise filter.
+std::vector<Key> method_keys() {
+  return {
       float_key("voxel_size_m", [](auto& c) -> auto& { return c.voxels.voxel_size_m; }, "voxel size v (metres)"),
       Key{"binning", "voxel cells: auto (camera if organized), euclidean or camera",
           [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
           [](const LccpConfig& c) { return show(c.voxels.binning); }},
       bool_key("crease_preserving_normals", [](auto& c) -> auto& { return c.normals.crease_preserving; },
                "beyond the paper: normals near a crease from the flattest neighbourhood they lie on (true/false)"),
+      float_key("planar_variation", [](auto& c) -> auto& { return c.normals.planar_variation; },
+                "flood: a voxel normal is a plane's at most at this surface variation (least eigenvalue / trace)"),
+      Key{"growth", "supervoxel growth: flood (beyond the paper: each voxel once, never across a crease or step) or vccs",
+          [](LccpConfig& c, const std::string& t) { c.supervoxels.growth = parse_growth("growth", t); },
+          [](const LccpConfig& c) { return std::string(c.supervoxels.growth == Growth::flood ? "flood" : "vccs"); }},
       float_key("seed_size_m", [](auto& c) -> auto& { return c.supervoxels.seed_size_m; }, "supervoxel seed spacing s (metres)"),
       bool_key("depth_scaled_seeds", [](auto& c) -> auto& { return c.supervoxels.depth_scaled_seeds; },
                "beyond the paper: camera cells beyond s / (4 v) metres get seeds 4 cells apart (true/false)"),
+      float_key("max_normal_angle_deg", [](auto& c) -> auto& { return c.supervoxels.max_normal_angle_deg; },
+                "flood: a patch admits voxels whose normal is within this angle of its own (degrees)"),
       float_key("spatial_weight", [](auto& c) -> auto& { return c.supervoxels.spatial_weight; }, "w_s, per seed spacing of distance"),
       float_key("normal_weight", [](auto& c) -> auto& { return c.supervoxels.normal_weight; }, "w_n, on 1 - |n1.n2|"),
       float_key("color_weight", [](auto& c) -> auto& { return c.supervoxels.color_weight; }, "w_c, on |rgb1 - rgb2| / 255"),
@@ -153,6 +174,30 @@ const std::array<Key, 34>& keys() {
       float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
       count_key("n_filter_supervoxels", [](auto& c) -> auto& { return c.filter.n_filter_supervoxels; },
                 "segments of <= this many supervoxels merge into a neighbour (A.4)"),
+  };
+}
+
+// The depth sensor's noise model (SensorConfig).
+std::vector<Key> sensor_keys() {
+  return {
+      float_key("sensor_focal_px", [](auto& c) -> auto& { return c.sensor.focal_px; },
+                "flood: the depth sensor's disparity focal length f (pixels)"),
+      float_key("sensor_baseline_m", [](auto& c) -> auto& { return c.sensor.baseline_m; },
+                "flood: the depth sensor's baseline b (metres)"),
+      float_key("sensor_disparity_step_px", [](auto& c) -> auto& { return c.sensor.disparity_step_px; },
+                "flood: the disparity's quantization d (pixels); depth steps are z^2 d / (f b)"),
+      float_key("sensor_axial_sigma_m", [](auto& c) -> auto& { return c.sensor.axial_sigma_m; },
+                "flood: the axial noise's standard deviation at the nearest range (metres)"),
+      float_key("sensor_axial_sigma_per_m2", [](auto& c) -> auto& { return c.sensor.axial_sigma_per_m2; },
+                "flood: its growth with the square of the depth beyond the nearest range (1/metre)"),
+      float_key("sensor_min_range_m", [](auto& c) -> auto& { return c.sensor.min_range_m; },
+                "flood: the sensor's nearest range (metres)"),
+  };
+}
+
+// Bounds on the work one cloud may ask for (LimitsConfig).
+std::vector<Key> limit_keys() {
+  return {
       count_key("max_points", [](auto& c) -> auto& { return c.limits.max_points; }, "refuse clouds with more points"),
       count_key("max_voxels", [](auto& c) -> auto& { return c.limits.max_voxels; }, "refuse clouds filling more voxels"),
       count_key("max_growth_passes", [](auto& c) -> auto& { return c.limits.max_growth_passes; },
@@ -160,6 +205,16 @@ const std::array<Key, 34>& keys() {
       float_key("max_coordinate_m", [](auto& c) -> auto& { return c.limits.max_coordinate_m; },
                 "refuse clouds with a finite point farther along an axis (metres)"),
   };
+}
+
+const std::vector<Key>& keys() {
+  static const std::vector<Key> table = [] {
+    std::vector<Key> all;
+    for (std::vector<Key> group : {scene_keys(), method_keys(), sensor_keys(), limit_keys()}) {
+      all.insert(all.end(), group.begin(), group.end());
+    }
+    return all;
+  }();
   return table;
 }
 

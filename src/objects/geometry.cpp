@@ -362,7 +362,7 @@ std::vector<Vec3> normal_sums(const SegmentationWork& w, std::size_t K) {
   for (std::size_t v = 0; v < w.grid.size(); ++v) {
     if (members.count(v) == 0) continue;
     const std::uint32_t label = w.result.labels[*members.begin(v)];
-    if (label != 0 && label <= K) sums[label - 1] += members.count(v) * w.normals[v].cast<double>();
+    if (label != 0 && label <= K) sums[label - 1] += members.count(v) * w.normals.directions[v].cast<double>();
   }
   return sums;
 }

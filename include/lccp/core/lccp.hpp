@@ -5,6 +5,7 @@
 #include "lccp/cloud.hpp"
 #include "lccp/config.hpp"
 #include "lccp/core/adjacency.hpp"
+#include "lccp/core/normals.hpp"
 #include "lccp/core/stages.hpp"
 #include "lccp/core/supervoxels.hpp"
 #include "lccp/core/support_plane.hpp"
@@ -30,7 +31,7 @@ struct SegmentationWork {
   std::vector<std::uint8_t> skip;                      // per point, 1: left out (empty: none); set by the caller
   std::optional<SupportPlane> support;                 // support (its points join `skip`)
   VoxelGrid grid;                                      // voxelize
-  std::vector<Eigen::Vector3f> normals;                // normals, per voxel
+  VoxelNormals normals;                                // normals, per voxel
   std::vector<std::uint32_t> seeds;                    // seeds, voxel indices
   Supervoxels supervoxels;                             // growth
   std::vector<Edge> edges;                             // adjacency

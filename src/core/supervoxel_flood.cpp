@@ -1,0 +1,277 @@
+#include "supervoxel_flood.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "parallel.hpp"
+#include "seed_spacing.hpp"
+
+namespace lccp::detail {
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr float kUnreached = std::numeric_limits<float>::infinity();
+constexpr float kReachSeeds = 1.8f;  // VCCS's reach, int(1.8 s / v) - 1 rings of v: 1.8 seed spacings
+
+// What the flood reads of a voxel, in one place: its centroid, the sensor's
+// depth tolerance at its depth, its normal.
+struct Voxel {
+  Eigen::Vector3f xyz;
+  float tolerance_m;
+  Eigen::Vector3f normal;
+};
+
+// A patch as a voxel is measured against it: its members' mean as it
+// stands (seeded region growing, Adams and Bischof 1994: a voxel is measured
+// against the region, not its seed), 1 / s for the seed spacing s at its
+// seed's depth, and the square of its reach.
+struct Patch {
+  Eigen::Vector3f centre;
+  Eigen::Vector3f normal;
+  Eigen::Vector3f rgb;
+  float inverse_spacing;
+  float reach_squared;
+};
+
+// The sums over a patch's members, updated as voxels settle.
+struct PatchSums {
+  Eigen::Vector3f xyz = Eigen::Vector3f::Zero();
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+  Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
+  float count = 0;
+
+  void add(const Eigen::Vector3f& x, const Eigen::Vector3f& n, const Eigen::Vector3f& colour, Patch& mean) {
+    xyz += x;
+    normal += n;
+    rgb += colour;
+    count += 1;
+    mean.centre = xyz / count;
+    mean.rgb = rgb / count;
+    const float length = normal.norm();
+    mean.normal = length > 1e-6f ? Eigen::Vector3f(normal / length) : n;
+  }
+};
+
+// Entries (voxel, patch) in buckets of the VCCS distance: popped smallest
+// first, in the order pushed within a bucket (so the same for any run).
+class BucketQueue {
+ public:
+  explicit BucketQueue(float max_distance) : scale_(max_distance > 0 ? (kBuckets - 1) / max_distance : 0) {}
+
+  void push(float distance, std::uint32_t voxel, std::uint32_t patch) {
+    // An entry nearer than the bucket being popped joins that bucket: the
+    // flood never goes back (a voxel's distance is to a patch, not along a path).
+    const auto b = std::clamp(static_cast<std::size_t>(distance * scale_), current_, kBuckets - 1);
+    buckets_[b].push_back(std::uint64_t{voxel} << 32 | patch);
+    highest_ = std::max(highest_, b);
+  }
+
+  // Calls visit(voxel, patch) for every entry, smallest bucket first, until
+  // none is left; visit may push.
+  template <typename Visit>
+  void drain(Visit visit) {
+    for (current_ = 0; current_ <= highest_; ++current_) {
+      std::vector<std::uint64_t>& bucket = buckets_[current_];
+      for (std::size_t i = 0; i < bucket.size(); ++i) {
+        visit(static_cast<std::uint32_t>(bucket[i] >> 32), static_cast<std::uint32_t>(bucket[i]));
+      }
+      bucket.clear();
+    }
+    current_ = highest_ = 0;
+  }
+
+ private:
+  static constexpr std::size_t kBuckets = 1024;
+  float scale_;
+  std::size_t current_ = 0, highest_ = 0;
+  std::vector<std::vector<std::uint64_t>> buckets_ = std::vector<std::vector<std::uint64_t>>(kBuckets);
+};
+
+class Flood {
+ public:
+  Flood(const VoxelGrid& grid, const VoxelNormals& normals, const LccpConfig& config)
+      : grid_(grid), planar_(normals.planar), config_(config.supervoxels),
+        spacing_(config.supervoxels, config.voxels.voxel_size_m, grid.binning),
+        cos_max_angle_(std::cos(config.supervoxels.max_normal_angle_deg * std::numbers::pi_v<float> / 180.0f)),
+        coloured_(config.supervoxels.color_weight > 0.0f), queue_(max_distance()), voxels_(grid.size()),
+        owner_(grid.size(), kNone), queued_by_(grid.size(), kNone), best_(grid.size(), kUnreached) {
+    parallel_for_each_index(grid.size(), [&](std::size_t v) {
+      const Eigen::Vector3f& x = grid.centroids[v];
+      voxels_[v] = {x, config.sensor.depth_tolerance_m(x.z()), normals.directions[v]};
+    });
+  }
+
+  // The seeds' patches flood the voxels together; what none of them admits
+  // seeds patches of its own, in voxel order.
+  void grow(const std::vector<std::uint32_t>& seeds) {
+    for (const std::uint32_t v : seeds) plant(v);
+    queue_.drain([&](std::uint32_t u, std::uint32_t k) { settle(u, k); });
+    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
+      if (owner_[v] != kNone) continue;
+      plant(v);
+      queue_.drain([&](std::uint32_t u, std::uint32_t k) { settle(u, k); });
+    }
+  }
+
+  void refine();
+  Supervoxels finish() const;
+
+ private:
+  // The largest distance an admitted voxel can have: the normal term at the
+  // largest angle, the colour term, the spatial term at the reach.
+  float max_distance() const {
+    return config_.normal_weight * (1.0f - cos_max_angle_) + config_.color_weight * std::sqrt(3.0f) +
+           config_.spatial_weight * kReachSeeds;
+  }
+
+  void plant(std::uint32_t v) {
+    const float spacing = spacing_.at(voxels_[v].xyz.z());
+    const float reach = kReachSeeds * spacing;
+    patches_.push_back({voxels_[v].xyz, voxels_[v].normal, grid_.colors[v], 1.0f / spacing, reach * reach});
+    sums_.emplace_back();
+    best_[v] = 0;
+    queue_.push(0, v, static_cast<std::uint32_t>(patches_.size() - 1));
+  }
+
+  // Voxel u joins patch k (its first and nearest claim); its free neighbours
+  // that k admits are queued at their distance to k as it now stands (once
+  // per patch: measured when the patch first reaches them).
+  void settle(std::uint32_t u, std::uint32_t k) {
+    if (owner_[u] != kNone) return;
+    owner_[u] = k;
+    sums_[k].add(voxels_[u].xyz, voxels_[u].normal, grid_.colors[u], patches_[k]);
+    const Patch& patch = patches_[k];
+    for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
+      if (owner_[*w] != kNone || queued_by_[*w] == k) continue;
+      const float d = admitted_distance(*w, patch);
+      if (!(d < best_[*w])) continue;
+      best_[*w] = d;
+      queued_by_[*w] = k;
+      queue_.push(d, *w, k);
+    }
+  }
+
+  float distance(std::uint32_t v, const Patch& p) const;
+  float admitted_distance(std::uint32_t v, const Patch& p) const;
+
+  const VoxelGrid& grid_;
+  const std::vector<std::uint8_t>& planar_;
+  const SupervoxelConfig& config_;
+  const SeedSpacing spacing_;
+  const float cos_max_angle_;
+  const bool coloured_;
+  BucketQueue queue_;
+  std::vector<Voxel> voxels_;
+  std::vector<std::uint32_t> owner_;
+  std::vector<std::uint32_t> queued_by_;  // the patch of the voxel's nearest claim
+  std::vector<float> best_;               // its distance
+  std::vector<Patch> patches_;
+  std::vector<PatchSums> sums_;
+};
+
+// D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s   (VCCS distance; s at the seed's depth)
+float Flood::distance(std::uint32_t v, const Patch& p) const {
+  const Voxel& x = voxels_[v];
+  const float colour = coloured_ ? config_.color_weight * (grid_.colors[v] - p.rgb).norm() / 255.0f : 0.0f;
+  return config_.normal_weight * (1.0f - std::abs(x.normal.dot(p.normal))) + colour +
+         config_.spatial_weight * (x.xyz - p.centre).norm() * p.inverse_spacing;
+}
+
+// D if patch p admits voxel v, else infinity. A patch admits a voxel on its
+// own surface: its normal within max_normal_angle_deg of the patch's (a larger
+// change is a crease), its centroid within the sensor's depth tolerance of the
+// patch's plane (farther is a step, where two faces meet), and within 1.8 s of its centre.
+float Flood::admitted_distance(std::uint32_t v, const Patch& p) const {
+  const Voxel& x = voxels_[v];
+  const Eigen::Vector3f offset = x.xyz - p.centre;
+  const float cosine = std::abs(x.normal.dot(p.normal)), squared = offset.squaredNorm();
+  const bool admitted = cosine >= cos_max_angle_ && std::abs(offset.dot(p.normal)) <= x.tolerance_m &&
+                        squared <= p.reach_squared;
+  if (!admitted) return kUnreached;
+  const float colour = coloured_ ? config_.color_weight * (grid_.colors[v] - p.rgb).norm() / 255.0f : 0.0f;
+  return config_.normal_weight * (1.0f - cosine) + colour + config_.spatial_weight * std::sqrt(squared) * p.inverse_spacing;
+}
+
+// One VCCS pass against the flooded patches' means (a boundary refinement):
+// a voxel moves to the neighbouring patch nearest to it if that patch admits
+// it. Every voxel reads the flood's owners and writes its own, so the pass is
+// parallel and the same for any thread count; the sums are taken after it.
+void Flood::refine() {
+  std::vector<std::uint32_t> next(owner_.size());
+  parallel_for_each_index(owner_.size(), [&](std::size_t index) {
+    const auto v = static_cast<std::uint32_t>(index);
+    const std::uint32_t own = owner_[v];
+    // The neighbours' other patches, repeats of the previous one dropped
+    // (neighbours of one patch come in runs), then measured.
+    std::array<std::uint32_t, 26> foreign;
+    std::size_t count = 0;
+    std::uint32_t last = own;
+    for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
+      const std::uint32_t k = owner_[*w];
+      const bool kept = (k != own) & (k != last);
+      foreign[count] = k;
+      count += kept;
+      last = kept ? k : last;
+    }
+    std::uint32_t best = own;
+    float best_distance = count > 0 ? distance(v, patches_[own]) : 0.0f;
+    for (std::size_t i = 0; i < count; ++i) {
+      const float d = admitted_distance(v, patches_[foreign[i]]);
+      const bool nearer = d < best_distance || (d == best_distance && foreign[i] < best);
+      best = nearer ? foreign[i] : best;
+      best_distance = nearer ? d : best_distance;
+    }
+    next[v] = best;
+  });
+  owner_.swap(next);
+}
+
+// Patches as LCCP reads them: the mean centroid and colour of their members,
+// in voxel order, and the normalized sum of their planar members' normals (of
+// all members' if none is planar): a member whose normal straddles a crease
+// or a step would turn the patch's toward the surface beside it. Patches the
+// refinement emptied are dropped.
+Supervoxels Flood::finish() const {
+  std::vector<Eigen::Vector3d> xyz(patches_.size(), Eigen::Vector3d::Zero()), normal = xyz, planar = xyz, rgb = xyz;
+  std::vector<std::uint32_t> count(patches_.size(), 0);
+  for (std::size_t v = 0; v < owner_.size(); ++v) {
+    const std::uint32_t k = owner_[v];
+    xyz[k] += voxels_[v].xyz.cast<double>();
+    normal[k] += voxels_[v].normal.cast<double>();
+    if (planar_[v]) planar[k] += voxels_[v].normal.cast<double>();
+    rgb[k] += grid_.colors[v].cast<double>();
+    ++count[k];
+  }
+  Supervoxels result;
+  std::vector<std::uint32_t> new_id(patches_.size(), kNone);
+  for (std::size_t k = 0; k < patches_.size(); ++k) {
+    if (count[k] == 0) continue;
+    new_id[k] = static_cast<std::uint32_t>(result.size());
+    const Eigen::Vector3f centroid = (xyz[k] / count[k]).cast<float>();
+    const Eigen::Vector3d& sum = planar[k].norm() > 1e-6 ? planar[k] : normal[k];
+    const double length = sum.norm();
+    result.centroids.push_back(centroid);
+    result.normals.push_back(length > 1e-6 ? Eigen::Vector3f((sum / length).cast<float>()) : Eigen::Vector3f(-centroid.normalized()));
+    result.colors.push_back((rgb[k] / count[k]).cast<float>());
+    result.voxel_counts.push_back(count[k]);
+  }
+  result.supervoxel_of_voxel.resize(owner_.size());
+  for (std::size_t v = 0; v < owner_.size(); ++v) result.supervoxel_of_voxel[v] = new_id[owner_[v]];
+  result.absorbed.assign(owner_.size(), 0);
+  return result;
+}
+
+}  // namespace
+
+Supervoxels flood_supervoxels(const VoxelGrid& grid, const VoxelNormals& voxel_normals,
+                              const std::vector<std::uint32_t>& seeds, const LccpConfig& config) {
+  Flood flood(grid, voxel_normals, config);
+  flood.grow(seeds);
+  flood.refine();
+  return flood.finish();
+}
+
+}  // namespace lccp::detail
