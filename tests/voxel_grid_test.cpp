@@ -13,6 +13,7 @@
 
 #include "../src/core/plane_fit.hpp"
 #include "lccp/config.hpp"
+#include "lccp/core/lccp.hpp"
 #include "lccp/core/normals.hpp"
 #include "lccp/core/voxel_grid.hpp"
 #include "lccp/error.hpp"
@@ -395,7 +396,10 @@ TEST(VoxelizeCamera, EuclideanCellsDoNotGrowWithDepth) {
   EXPECT_LE(far, 21u);
 }
 
-TEST(VoxelGridBinning, AutomaticDependsOnOrganisationAndSensorSide) {
+// Automatic binning takes the camera transform for any cloud a camera at the
+// origin sees, organized or not, and cubes for one that spreads beyond a
+// camera's view (a world frame, say).
+TEST(VoxelGridBinning, AutomaticDependsOnTheViewNotOnOrganisation) {
   PointCloud organized;
   organized.width = 2;
   organized.height = 2;
@@ -407,7 +411,7 @@ TEST(VoxelGridBinning, AutomaticDependsOnOrganisationAndSensorSide) {
     return voxelize(cloud, config).binning;
   };
   EXPECT_EQ(binning_used(organized, Binning::automatic), Binning::camera);
-  EXPECT_EQ(binning_used(flat, Binning::automatic), Binning::euclidean);
+  EXPECT_EQ(binning_used(flat, Binning::automatic), Binning::camera);
   EXPECT_EQ(binning_used(organized, Binning::euclidean), Binning::euclidean);
   EXPECT_EQ(binning_used(flat, Binning::camera), Binning::camera);
   EXPECT_EQ(binning_used(organized, Binning::camera), Binning::camera);
@@ -417,6 +421,36 @@ TEST(VoxelGridBinning, AutomaticDependsOnOrganisationAndSensorSide) {
   behind.points[3] = Eigen::Vector3f(0, 0, -1);
   EXPECT_EQ(binning_used(behind, Binning::automatic), Binning::euclidean);
   EXPECT_THROW(binning_used(behind, Binning::camera), Error);
+  // In front but 61 deg off the axis, across or up: no camera sees it, so cubes;
+  // asked for, the camera transform still takes it. 59 deg is in view.
+  for (const Eigen::Vector3f& wide : {Eigen::Vector3f(1.81f, 0, 1), Eigen::Vector3f(0, -1.81f, 1)}) {
+    PointCloud spread = flat;
+    spread.points[3] = wide;
+    EXPECT_EQ(binning_used(spread, Binning::automatic), Binning::euclidean);
+    EXPECT_EQ(binning_used(spread, Binning::camera), Binning::camera);
+  }
+  PointCloud near_edge = flat;
+  near_edge.points[3] = Eigen::Vector3f(1.66f, -1.66f, 1);
+  EXPECT_EQ(binning_used(near_edge, Binning::automatic), Binning::camera);
+}
+
+// A camera's frame, organized or as its finite points only (what numpy and
+// Open3D users pass), is segmented the same: same voxels, same labels.
+TEST(VoxelGridBinning, FinitePointsAloneAreSegmentedAsTheOrganizedCloud) {
+  const auto scene = test::render({test::concave_corner().wall, test::concave_corner().table});
+  std::vector<Eigen::Vector3f> finite;
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < scene.cloud.size(); ++i) {
+    if (scene.cloud.points[i].allFinite()) finite.push_back(scene.cloud.points[i]), index.push_back(i);
+  }
+  ASSERT_GT(finite.size(), 5000u);
+  const LccpSegmenter segmenter(LccpConfig{});
+  const SegmentationResult organized = segmenter.segment(scene.cloud);
+  const SegmentationResult flat = segmenter.segment(test::unorganized(finite));
+  EXPECT_EQ(flat.voxel_count, organized.voxel_count);
+  EXPECT_EQ(flat.segment_count, organized.segment_count);
+  EXPECT_GE(organized.segment_count, 2u);  // the wall and the table
+  for (std::size_t j = 0; j < finite.size(); ++j) ASSERT_EQ(flat.labels[j], organized.labels[index[j]]) << j;
 }
 
 TEST(VoxelizeCamera, AutomaticOnOrganizedCloudEqualsCamera) {

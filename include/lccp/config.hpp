@@ -9,7 +9,7 @@ namespace lccp {
 
 // How points are binned into voxels.
 enum class Binning {
-  automatic,  // camera for organized clouds, euclidean otherwise
+  automatic,  // camera if every point lies in a camera's view from the origin (organized or not), euclidean otherwise
   euclidean,  // cubes of voxel_size_m in metres (the paper)
   camera,     // cells of voxel_size_m in (x/z, y/z, ln z): size grows with depth (PCL)
 };

@@ -25,6 +25,11 @@ using detail::PackedKeys;
 
 constexpr float kMaxCellCoordinate = 1 << 30;  // |cell| beyond this: refuse the cloud
 const Cell kInvalidCell = Cell::Constant(std::numeric_limits<int>::min());
+// Automatic binning takes a cloud for a camera's when every point lies within
+// 60 deg of the +z axis, across and up: a field of view of 120 deg, wider than
+// any depth camera's (Kinect v1: 57 x 43 deg). A cloud in a world frame (z up,
+// say) spreads beyond it.
+constexpr float kViewSlope = 1.7320508f;  // tan(60 deg)
 
 struct CellBounds {
   std::array<int, 3> min{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
@@ -32,7 +37,7 @@ struct CellBounds {
   std::array<int, 3> max{std::numeric_limits<int>::min(), std::numeric_limits<int>::min(),
                          std::numeric_limits<int>::min()};
   std::size_t count = 0;
-  bool behind_sensor = false;  // a finite point at z <= 0 (camera binning impossible)
+  bool outside_view = false;   // a finite point outside the camera's view (camera binning not taken)
   float farthest = 0.0f;       // largest |coordinate| of a finite point
 
   void add(const Cell& c) {
@@ -48,7 +53,7 @@ struct CellBounds {
       max[a] = std::max(max[a], other.max[a]);
     }
     count += other.count;
-    behind_sensor = behind_sensor || other.behind_sensor;
+    outside_view = outside_view || other.outside_view;
     farthest = std::max(farthest, other.farthest);
   }
 };
@@ -71,10 +76,17 @@ Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning) {
               floor_to_int(p.z() * inverse_size));
 }
 
+// Whether a camera at the origin looking along +z sees p: in front of it and
+// within `slope` (tan of half the field of view) of its axis, across and up.
+bool in_view(const Eigen::Vector3f& p, float slope) {
+  return p.z() > 0.0f && std::abs(p.x()) <= slope * p.z() && std::abs(p.y()) <= slope * p.z();
+}
+
 // Cells of every point (kInvalidCell where non-finite or skipped) and their
-// bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest tells.
+// bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest
+// tells. With camera binning, a point outside the view (`slope`) gets no cell; bounds.outside_view tells.
 CellBounds compute_cells(const CloudView& cloud, const std::vector<std::uint8_t>& skip, float voxel_size,
-                         Binning binning, float max_coordinate, std::vector<Cell>& cells) {
+                         Binning binning, float slope, float max_coordinate, std::vector<Cell>& cells) {
   cells.resize(cloud.size());
   const float inverse_size = 1.0f / voxel_size;
   return tbb::parallel_reduce(
@@ -86,8 +98,8 @@ CellBounds compute_cells(const CloudView& cloud, const std::vector<std::uint8_t>
           if (!is_finite(p) || (!skip.empty() && skip[i])) continue;
           bounds.farthest = std::max(bounds.farthest, p.cwiseAbs().maxCoeff());
           if (bounds.farthest > max_coordinate) continue;
-          if (binning == Binning::camera && !(p.z() > 0.0f)) {
-            bounds.behind_sensor = true;
+          if (binning == Binning::camera && !in_view(p, slope)) {
+            bounds.outside_view = true;
             continue;
           }
           cells[i] = cell_of(p, inverse_size, binning);
@@ -267,21 +279,23 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
                    const std::vector<std::uint8_t>& skip) {
   check_limit(cloud.size() <= limits.max_points, "the cloud has " + std::to_string(cloud.size()) + " points",
               "max_points", limits.max_points);
-  // Automatic binning tries the camera transform on organized clouds and falls
-  // back to cubes if a point lies behind the sensor.
-  Binning binning = config.binning == Binning::automatic && cloud.organized() ? Binning::camera : config.binning;
-  if (binning == Binning::automatic) binning = Binning::euclidean;
+  // Automatic binning tries the camera transform (organized or not: it needs
+  // no image grid) and falls back to cubes if a point lies outside a camera's
+  // view; asked for, the camera transform needs only z > 0.
+  const bool automatic = config.binning == Binning::automatic;
+  Binning binning = automatic ? Binning::camera : config.binning;
+  const float slope = automatic ? kViewSlope : std::numeric_limits<float>::infinity();
   std::vector<Cell> cells;
-  CellBounds bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
+  CellBounds bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, slope, limits.max_coordinate_m, cells);
   check_limit(bounds.farthest <= limits.max_coordinate_m,
               "a point lies " + format_number(bounds.farthest) + " m from the origin along an axis",
               "max_coordinate_m", limits.max_coordinate_m);
-  if (bounds.behind_sensor && config.binning == Binning::camera) {
+  if (bounds.outside_view && !automatic) {
     throw Error("camera binning needs every point at z > 0; use binning: euclidean");
   }
-  if (bounds.behind_sensor) {
+  if (bounds.outside_view) {
     binning = Binning::euclidean;
-    bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
+    bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, slope, limits.max_coordinate_m, cells);
   }
   if (bounds.count == 0) return no_voxels(cloud, binning);
   const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));

@@ -145,7 +145,7 @@ std::vector<Key> scene_keys() {
 std::vector<Key> method_keys() {
   return {
       float_key("voxel_size_m", [](auto& c) -> auto& { return c.voxels.voxel_size_m; }, "voxel size v (metres)"),
-      Key{"binning", "voxel cells: auto (camera if organized), euclidean or camera",
+      Key{"binning", "voxel cells: auto (camera if every point is in a camera's view from the origin), euclidean or camera",
           [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
           [](const LccpConfig& c) { return show(c.voxels.binning); }},
       bool_key("crease_preserving_normals", [](auto& c) -> auto& { return c.normals.crease_preserving; },

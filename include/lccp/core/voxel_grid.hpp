@@ -37,8 +37,9 @@ struct VoxelGrid {
   std::size_t size() const { return centroids.size(); }
 };
 
-// Binning::automatic means camera cells for an organized cloud whose points all
-// lie in front of the sensor (z > 0), cubes otherwise. Throws lccp::Error when
+// Binning::automatic means camera cells for a cloud, organized or not, whose
+// points all lie in a camera's view from the origin (z > 0 and within 60 deg
+// of the +z axis, across and up), cubes otherwise. Throws lccp::Error when
 // the cloud has no finite point, when camera binning is asked for a point at
 // z <= 0, when the cloud spans more cells than the integer keys can hold, or
 // when it exceeds a limit (more points or voxels than allowed, a finite point
