@@ -84,11 +84,12 @@ class FrameQueue {
   std::string error_;
 };
 
-// What Python sees of a FrameResult.
-struct PyFrame {
+// What Python sees of a FrameResult: a Segmentation (labels, objects,
+// segments, support_plane) with the frame's own fields.
+struct PyFrame : PySegmentation {
   std::uint64_t index = 0;
   std::uint64_t timestamp_us = 0;
-  py::object points, labels, objects, segments, support_plane, new_ids, gone_ids;
+  py::object points, new_ids, gone_ids;
   std::string error;
 };
 
@@ -96,16 +97,12 @@ PyFrame to_python(FrameResult&& result) {
   PyFrame frame;
   frame.index = result.frame.index;
   frame.timestamp_us = result.frame.timestamp_us;
-  const py::dict document = json_document(frame.index, frame.timestamp_us, result.segmentation);
-  frame.segments = document["objects"];
-  frame.support_plane = document["support_plane"];
-  frame.new_ids = document["new_ids"];
-  frame.gone_ids = document["gone_ids"];
   PointCloud& cloud = result.frame.cloud;
   const Shape shape = cloud_shape(cloud);
-  SceneSegmentation& scene = result.segmentation;
-  frame.labels = labels_array(std::move(scene.labels), shape);
-  frame.objects = scene.objects.empty() ? py::none() : py::object(labels_array(std::move(scene.objects), shape));
+  const py::dict document = fill_segmentation(frame, std::move(result.segmentation), shape, frame.index,
+                                              frame.timestamp_us);
+  frame.new_ids = document["new_ids"];
+  frame.gone_ids = document["gone_ids"];
   frame.points = points_array(std::move(cloud.points), shape);
   frame.error = std::move(result.error);
   return frame;
@@ -208,14 +205,18 @@ std::unique_ptr<FrameSource> open(const std::string& spec, const SourceLimits& l
 }
 
 constexpr const char* kFrameDoc = R"doc(
-One segmented frame of a Replay or Live stream.
+One segmented frame of a Replay or Live stream: a Segmentation (labels,
+objects, segments, support_plane, as segment(..., segments=True) returns)
+with the frame's own fields.
 
-index, timestamp_us: the frame's position in the source and its time stamp.
+index, timestamp_us: the frame's position in the source and its time stamp
+    (a live source's dropped frames leave gaps in index).
 points: float32 (H, W, 3) (depth frames) or (N, 3), metres, NaN = no data.
 labels: uint32, the points' leading shape: per point the id of its segment
     (with two levels, of its part); ids stay with a segment from frame to frame.
 objects: uint32 per-point object ids like labels, or None with one level.
-segments: the "objects" list of the frame's JSON document (README schema).
+segments: per object a dict (its parts inside): the "objects" list of the
+    frame's JSON document (README schema), vectors and axes as float64 arrays.
 support_plane: {"id", "normal", "d"} or None. new_ids, gone_ids: lists of ids.
 error: "" or why this frame failed (its labels are then all 0).
 )doc";
@@ -228,14 +229,11 @@ device disappears) the iteration raises RuntimeError after the last frame.
 )doc";
 
 void bind_frame(py::module_& module) {
-  py::class_<PyFrame>(module, "Frame", kFrameDoc)
+  // Its labels, objects, segments and support_plane are the Segmentation's.
+  py::class_<PyFrame, PySegmentation>(module, "Frame", kFrameDoc)
       .def_readonly("index", &PyFrame::index, "The frame's index in the source (a gap means lost frames).")
       .def_readonly("timestamp_us", &PyFrame::timestamp_us, "The source's time stamp, microseconds (0 if none).")
       .def_readonly("points", &PyFrame::points, "float32 (H, W, 3) or (N, 3) points, NaN = no data.")
-      .def_readonly("labels", &PyFrame::labels, "uint32 segment (part) id per point, 0 = no data.")
-      .def_readonly("objects", &PyFrame::objects, "uint32 object id per point, or None with one level.")
-      .def_readonly("segments", &PyFrame::segments, "The JSON document's \"objects\" list.")
-      .def_readonly("support_plane", &PyFrame::support_plane, "{\"id\", \"normal\", \"d\"} or None.")
       .def_readonly("new_ids", &PyFrame::new_ids, "Ids first seen in this frame.")
       .def_readonly("gone_ids", &PyFrame::gone_ids, "Ids of the previous frame not seen in this one.")
       .def_readonly("error", &PyFrame::error, "Why this frame failed, or \"\".")
