@@ -109,12 +109,14 @@ PyFrame to_python(FrameResult&& result) {
 }
 
 // One run of the pipeline over one source, on a thread of its own.
+// `frames`: the run stops once that many frames were handed to Python (a
+// live source drops frames at admission, so its own count would yield fewer).
 class Stream {
  public:
   Stream(std::unique_ptr<FrameSource> source, const SceneConfig& config, unsigned inflight,
-         std::optional<int> threads)
+         std::optional<int> threads, std::optional<std::uint64_t> frames)
       : segmenter_(config), pipeline_(segmenter_, PipelineConfig{inflight}), source_(std::move(source)),
-        threads_(threads), thread_([this] { run(); }) {}
+        threads_(threads), frames_to_yield_(frames), thread_([this] { run(); }) {}
   Stream(const Stream&) = delete;
   Stream& operator=(const Stream&) = delete;
   ~Stream() { close(); }
@@ -130,6 +132,8 @@ class Stream {
   Pipeline pipeline_;  // refers to segmenter_
   std::unique_ptr<FrameSource> source_;
   std::optional<int> threads_;
+  std::optional<std::uint64_t> frames_to_yield_;
+  std::uint64_t frames_yielded_ = 0;
   FrameQueue queue_{2};
   std::stop_source stop_;
   std::mutex close_mutex_;
@@ -151,8 +155,10 @@ void Stream::run() {
   queue_.end(std::move(error));
 }
 
-// Waits with the GIL released, looking for Ctrl-C every 100 ms.
+// Waits with the GIL released, looking for Ctrl-C every 100 ms. With the last
+// of `frames` the run is asked to stop (the frames in flight are dropped).
 PyFrame Stream::next() {
+  if (frames_to_yield_ && frames_yielded_ == *frames_to_yield_) finish();
   FrameResult result;
   for (;;) {
     FrameQueue::Status status;
@@ -160,7 +166,10 @@ PyFrame Stream::next() {
       py::gil_scoped_release release;
       status = queue_.pop(result, 100ms);
     }
-    if (status == FrameQueue::Status::frame) return to_python(std::move(result));
+    if (status == FrameQueue::Status::frame) {
+      if (frames_to_yield_ && ++frames_yielded_ == *frames_to_yield_) stop_.request_stop();
+      return to_python(std::move(result));
+    }
     if (status == FrameQueue::Status::ended) finish();
     if (PyErr_CheckSignals() != 0) {  // e.g. KeyboardInterrupt: stop the run, then raise it
       close();
@@ -264,14 +273,15 @@ or .ply files or a folder of them.
 
 path: the recording (str or os.PathLike). config: as segment()'s.
 inflight: frames segmented at once. threads: None for every core, or a
-count. frames: stop after this many frames (None: all).
+count. frames: yield this many frames, the first of the recording (None: all).
 )doc") + kStreamMethodsDoc).c_str());
   replay.def(py::init([](PathArg path, ConfigArg config, unsigned inflight, std::optional<int> threads,
                          std::optional<std::uint64_t> frames) {
                const SceneConfig scene_config = config_from(config);
                threads = thread_count(threads);
+               // Lossless: the first `frames` of the source are the frames yielded.
                auto source = open(path_string(path), SourceLimits{frames, std::nullopt});
-               return std::make_unique<Replay>(std::move(source), scene_config, inflight, threads);
+               return std::make_unique<Replay>(std::move(source), scene_config, inflight, threads, frames);
              }),
              py::arg("path"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
              py::arg("frames") = py::none());
@@ -280,20 +290,27 @@ count. frames: stop after this many frames (None: all).
 
 void bind_live(py::module_& module) {
   py::class_<Live> live(module, "Live", (std::string(R"doc(
-Segments a live OpenNI2 sensor's frames as they come (as lccp live): frames
-the pipeline has no room for are dropped (see Frame.index for gaps).
+Segments a live OpenNI2 sensor's frames as they come (as lccp live): the
+sensor does not wait, so frames that come while the pipeline (or a slow
+consumer of this iterator) has no room are dropped, the oldest first; the
+frames yielded show them as gaps in Frame.index.
 
 uri: the device's URI (lccp devices lists them; "virtual://synthetic" is the
 built-in virtual sensor). config: as segment()'s. inflight: frames segmented
-at once. threads: None for every core, or a count. frames, seconds: stop
-after this many frames or seconds (None: until close() or Ctrl-C).
+at once. threads: None for every core, or a count. frames: yield this many
+frames (dropped frames do not count: frames=10 yields 10 frames, whatever
+their indices; lccp live --frames counts frames taken from the sensor).
+seconds: stop this long after the first frame was asked for. None: until
+close() or Ctrl-C.
 )doc") + kStreamMethodsDoc).c_str());
   live.def(py::init([](const std::string& uri, ConfigArg config, unsigned inflight, std::optional<int> threads,
                        std::optional<std::uint64_t> frames, std::optional<double> seconds) {
              const SceneConfig scene_config = config_from(config);
              threads = thread_count(threads);
-             auto source = open(uri, SourceLimits{frames, seconds});
-             return std::make_unique<Live>(std::move(source), scene_config, inflight, threads);
+             if (frames && *frames == 0) throw py::value_error("frames: expected None or a positive number, got 0");
+             // The sensor runs on while frames are dropped: the stream counts what it yields.
+             auto source = open(uri, SourceLimits{std::nullopt, seconds});
+             return std::make_unique<Live>(std::move(source), scene_config, inflight, threads, frames);
            }),
            py::arg("uri"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
            py::arg("frames") = py::none(), py::arg("seconds") = py::none());
