@@ -7,6 +7,8 @@
 #   P/include/lccp/                             the public headers
 #   P/lib/cmake/LccpStream/                     find_package(LccpStream CONFIG): LccpStream::lccp
 #   P/lib/python3.X/dist-packages/lccp_stream*  the Python module (src/python)
+#   P/bin/lccp_ros, P/lib/liblccp_ros_nodelet.so, P/share/lccp_ros/
+#                                               with ROS: node, nodelet, ROS package folder (src/ros)
 # Every path the programs use is relative to their own file, so P can be moved.
 include(CMakePackageConfigHelpers)
 set(LCCP_INSTALL_CMAKEDIR lib/cmake/LccpStream)

@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "expect_error.hpp"
@@ -60,11 +63,13 @@ TEST(RosbagSource, RecordedBagHoldsEveryDepthFrameBitForBit) {
   EXPECT_EQ(from_bag->frame_count(), kRecordingFrames);
   EXPECT_FALSE(from_bag->is_live());
   std::uint64_t frames = 0;
+  std::uint64_t first_oni_us = 0, first_bag_us = 0;
   while (std::optional<Frame> expected = oni->next({})) {
     std::optional<Frame> actual = from_bag->next({});
     ASSERT_TRUE(actual && actual->depth) << "frame " << frames;
+    if (frames == 0) std::tie(first_oni_us, first_bag_us) = std::pair(expected->timestamp_us, actual->timestamp_us);
     EXPECT_EQ(actual->index, frames);
-    EXPECT_EQ(actual->timestamp_us, expected->timestamp_us);
+    EXPECT_EQ(actual->timestamp_us - first_bag_us, expected->timestamp_us - first_oni_us);  // the same spacing
     EXPECT_EQ(actual->depth->width, expected->depth->width);
     EXPECT_EQ(actual->depth->height, expected->depth->height);
     EXPECT_EQ(actual->depth->horizontal_fov_rad, expected->depth->horizontal_fov_rad);  // bit for bit
@@ -87,11 +92,44 @@ TEST(RosbagSource, ReplayOfTheBagGivesTheRecordingsLabels) {
     ASSERT_EQ(expected.size(), kSegmentedFrames);
     for (std::size_t i = 0; i < actual.size(); ++i) {
       EXPECT_EQ(actual[i].index, expected[i].index);
-      EXPECT_EQ(actual[i].timestamp_us, expected[i].timestamp_us);
+      EXPECT_EQ(actual[i].timestamp_us - actual[0].timestamp_us, expected[i].timestamp_us - expected[0].timestamp_us);
       EXPECT_TRUE(actual[i].labels == expected[i].labels) << config << ", frame " << i;
       EXPECT_TRUE(actual[i].objects == expected[i].objects) << config << ", frame " << i;
       EXPECT_GT(*std::max_element(actual[i].labels.begin(), actual[i].labels.end()), 1u);
     }
+  }
+  fs::remove_all(bag.parent_path());
+}
+
+std::uint64_t unix_time_us() {
+  const auto since_epoch = std::chrono::system_clock::now().time_since_epoch();
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(since_epoch).count());
+}
+
+// A bag is stamped like one recorded from a sensor: the time it was written plus
+// each frame's offset in the recording, not the .oni's timestamps counted from 0
+// (which ROS tools show as 1970).
+TEST(RosbagSource, RecordedBagIsStampedFromTheTimeOfRecording) {
+  constexpr std::uint64_t kYear2000Us = 946'684'800ull * 1'000'000;  // 2000-01-01T00:00:00Z
+  const std::uint64_t before_us = unix_time_us();
+  const fs::path bag = record_recording(test::scratch_dir("lccp_rosbag"));
+  const std::uint64_t after_us = unix_time_us();
+  auto oni = open_source({kRecording.string()});
+  auto from_bag = open_source({bag.string()});
+  std::vector<std::uint64_t> stamps, oni_stamps;
+  while (std::optional<Frame> frame = from_bag->next({})) {
+    stamps.push_back(frame->timestamp_us);  // the header stamp, in microseconds
+    oni_stamps.push_back(oni->next({})->timestamp_us);
+  }
+  ASSERT_EQ(stamps.size(), kRecordingFrames);
+  EXPECT_GE(stamps.front(), before_us);
+  EXPECT_LE(stamps.front(), after_us);
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    EXPECT_GT(stamps[i], kYear2000Us) << "frame " << i;
+    if (i > 0) {
+      EXPECT_GT(stamps[i], stamps[i - 1]) << "frame " << i;
+    }
+    EXPECT_EQ(stamps[i] - stamps[0], oni_stamps[i] - oni_stamps[0]) << "frame " << i;
   }
   fs::remove_all(bag.parent_path());
 }

@@ -43,7 +43,7 @@ using OptionalArrayArg = Typed<struct OptionalArrayTag>;  // numpy.ndarray or No
 using ConfigArg = Typed<struct ConfigTag>;                // preset, path, dict or Config
 using PathArg = Typed<struct PathTag>;                    // str or os.PathLike
 using IgnoreArg = Typed<struct IgnoreTag>;                // range, (first, last) or None
-using SegmentResult = Typed<struct SegmentResultTag>;     // labels, or (labels, objects)
+using SegmentResult = Typed<struct SegmentResultTag>;     // labels, or a Segmentation
 
 // --- numpy -> library (arrays.cpp) ----------------------------------------------
 // A cloud's arrays, held alive as long as the CloudView made from them is used.
@@ -112,7 +112,23 @@ auto with_threads(std::optional<int> threads, Work&& work) {
 
 // The frame's JSON document (encode_segments_json, the schema of the
 // segments.json files) as Python objects: one schema for files and Python.
+// Its vectors and axes (centroid, obb center/axes/extents, principal_axes,
+// principal_extents, mean_normal, the support plane's normal) are numpy
+// float64 arrays of shape (3,) and (3, 3), NaN where the file has null.
 py::dict json_document(std::uint64_t frame_index, std::uint64_t timestamp_us, const SceneSegmentation& scene);
+
+// What Python sees of a SceneSegmentation, under the same names in segment()'s
+// result (the class Segmentation) and in every Frame (a Segmentation too):
+// per point `labels` (finest level) and `objects` (None with one level), per
+// segment `segments` (the JSON document's "objects" list) and `support_plane`.
+struct PySegmentation {
+  py::object labels, objects, segments, support_plane;
+};
+
+// Fills `out` from `scene`, whose label vectors move into numpy arrays of
+// `shape`; returns the frame's JSON document (for the rest of its fields).
+py::dict fill_segmentation(PySegmentation& out, SceneSegmentation&& scene, const Shape& shape,
+                           std::uint64_t frame_index, std::uint64_t timestamp_us);
 
 // --- the parts of the module -------------------------------------------------------
 void bind_config(py::module_& module);
@@ -134,6 +150,6 @@ LCCP_PYTHON_TYPE_NAME(OptionalArrayArg, "Optional[numpy.ndarray]");
 LCCP_PYTHON_TYPE_NAME(ConfigArg, "Union[str, os.PathLike, dict, Config]");
 LCCP_PYTHON_TYPE_NAME(PathArg, "Union[str, os.PathLike]");
 LCCP_PYTHON_TYPE_NAME(IgnoreArg, "Optional[Union[range, Tuple[int, int]]]");
-LCCP_PYTHON_TYPE_NAME(SegmentResult, "Union[numpy.ndarray, Tuple[numpy.ndarray, list]]");
+LCCP_PYTHON_TYPE_NAME(SegmentResult, "Union[numpy.ndarray, Segmentation]");
 #undef LCCP_PYTHON_TYPE_NAME
 }  // namespace pybind11::detail

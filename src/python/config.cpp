@@ -9,11 +9,30 @@
 namespace lccp::python {
 namespace {
 
+using namespace pybind11::literals;  // "dtype"_a
+
 // A dict is written as JSON, which is YAML, and read by parse_config like a
 // file: the same keys, ranges and error messages ("unknown config key 'x'").
 SceneConfig config_from_dict(const py::dict& settings) {
   const std::string text = py::module_::import("json").attr("dumps")(settings).cast<std::string>();
   return parse_config(text, "config dict");
+}
+
+// A JSON list of numbers (or of lists of them) as a float64 array; numpy
+// turns JSON's null (a non-finite value, RFC 8259 Sec. 6) into NaN.
+py::array float_array(py::handle values) {
+  return py::module_::import("numpy").attr("asarray")(values, "dtype"_a = "float64");
+}
+
+// An object's or part's vectors and axes as arrays, its parts' too.
+void geometry_as_arrays(py::dict segment) {
+  for (const char* name : {"centroid", "principal_axes", "principal_extents", "mean_normal"}) {
+    segment[name] = float_array(segment[name]);
+  }
+  py::dict box = segment["obb"];
+  for (const char* name : {"center", "axes", "extents"}) box[name] = float_array(box[name]);
+  if (!segment.contains("parts")) return;
+  for (py::handle part : segment["parts"]) geometry_as_arrays(py::reinterpret_borrow<py::dict>(part));
 }
 
 }  // namespace
@@ -37,7 +56,13 @@ std::optional<int> thread_count(const std::optional<int>& threads) {
 
 py::dict json_document(std::uint64_t frame_index, std::uint64_t timestamp_us, const SceneSegmentation& scene) {
   const std::string text = encode_segments_json(frame_index, timestamp_us, scene);
-  return py::module_::import("json").attr("loads")(text);
+  py::dict document = py::module_::import("json").attr("loads")(text);
+  for (py::handle object : document["objects"]) geometry_as_arrays(py::reinterpret_borrow<py::dict>(object));
+  if (!document["support_plane"].is_none()) {
+    py::dict plane = document["support_plane"];
+    plane["normal"] = float_array(plane["normal"]);
+  }
+  return document;
 }
 
 void bind_config(py::module_& module) {

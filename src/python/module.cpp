@@ -19,7 +19,7 @@ LCCP Stream: object and part segmentation of point clouds with Locally
 Convex Connected Patches (Stein et al., ICRA 2014), the library behind the
 lccp command-line tool.
 
-segment(points, ...)        one cloud (numpy arrays) -> labels [, segments]
+segment(points, ...)        one cloud (numpy arrays) -> labels, or a Segmentation
 Replay(path, ...)           iterate over the segmented frames of a recording
 Live(uri, ...)              iterate over the segmented frames of a sensor
 evaluate(pred, gt, ...)     the paper's Appendix B scores

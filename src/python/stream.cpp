@@ -84,11 +84,12 @@ class FrameQueue {
   std::string error_;
 };
 
-// What Python sees of a FrameResult.
-struct PyFrame {
+// What Python sees of a FrameResult: a Segmentation (labels, objects,
+// segments, support_plane) with the frame's own fields.
+struct PyFrame : PySegmentation {
   std::uint64_t index = 0;
   std::uint64_t timestamp_us = 0;
-  py::object points, labels, objects, segments, support_plane, new_ids, gone_ids;
+  py::object points, new_ids, gone_ids;
   std::string error;
 };
 
@@ -96,28 +97,26 @@ PyFrame to_python(FrameResult&& result) {
   PyFrame frame;
   frame.index = result.frame.index;
   frame.timestamp_us = result.frame.timestamp_us;
-  const py::dict document = json_document(frame.index, frame.timestamp_us, result.segmentation);
-  frame.segments = document["objects"];
-  frame.support_plane = document["support_plane"];
-  frame.new_ids = document["new_ids"];
-  frame.gone_ids = document["gone_ids"];
   PointCloud& cloud = result.frame.cloud;
   const Shape shape = cloud_shape(cloud);
-  SceneSegmentation& scene = result.segmentation;
-  frame.labels = labels_array(std::move(scene.labels), shape);
-  frame.objects = scene.objects.empty() ? py::none() : py::object(labels_array(std::move(scene.objects), shape));
+  const py::dict document = fill_segmentation(frame, std::move(result.segmentation), shape, frame.index,
+                                              frame.timestamp_us);
+  frame.new_ids = document["new_ids"];
+  frame.gone_ids = document["gone_ids"];
   frame.points = points_array(std::move(cloud.points), shape);
   frame.error = std::move(result.error);
   return frame;
 }
 
 // One run of the pipeline over one source, on a thread of its own.
+// `frames`: the run stops once that many frames were handed to Python (a
+// live source drops frames at admission, so its own count would yield fewer).
 class Stream {
  public:
   Stream(std::unique_ptr<FrameSource> source, const SceneConfig& config, unsigned inflight,
-         std::optional<int> threads)
+         std::optional<int> threads, std::optional<std::uint64_t> frames)
       : segmenter_(config), pipeline_(segmenter_, PipelineConfig{inflight}), source_(std::move(source)),
-        threads_(threads), thread_([this] { run(); }) {}
+        threads_(threads), frames_to_yield_(frames), thread_([this] { run(); }) {}
   Stream(const Stream&) = delete;
   Stream& operator=(const Stream&) = delete;
   ~Stream() { close(); }
@@ -133,6 +132,8 @@ class Stream {
   Pipeline pipeline_;  // refers to segmenter_
   std::unique_ptr<FrameSource> source_;
   std::optional<int> threads_;
+  std::optional<std::uint64_t> frames_to_yield_;
+  std::uint64_t frames_yielded_ = 0;
   FrameQueue queue_{2};
   std::stop_source stop_;
   std::mutex close_mutex_;
@@ -154,8 +155,10 @@ void Stream::run() {
   queue_.end(std::move(error));
 }
 
-// Waits with the GIL released, looking for Ctrl-C every 100 ms.
+// Waits with the GIL released, looking for Ctrl-C every 100 ms. With the last
+// of `frames` the run is asked to stop (the frames in flight are dropped).
 PyFrame Stream::next() {
+  if (frames_to_yield_ && frames_yielded_ == *frames_to_yield_) finish();
   FrameResult result;
   for (;;) {
     FrameQueue::Status status;
@@ -163,7 +166,10 @@ PyFrame Stream::next() {
       py::gil_scoped_release release;
       status = queue_.pop(result, 100ms);
     }
-    if (status == FrameQueue::Status::frame) return to_python(std::move(result));
+    if (status == FrameQueue::Status::frame) {
+      if (frames_to_yield_ && ++frames_yielded_ == *frames_to_yield_) stop_.request_stop();
+      return to_python(std::move(result));
+    }
     if (status == FrameQueue::Status::ended) finish();
     if (PyErr_CheckSignals() != 0) {  // e.g. KeyboardInterrupt: stop the run, then raise it
       close();
@@ -208,14 +214,18 @@ std::unique_ptr<FrameSource> open(const std::string& spec, const SourceLimits& l
 }
 
 constexpr const char* kFrameDoc = R"doc(
-One segmented frame of a Replay or Live stream.
+One segmented frame of a Replay or Live stream: a Segmentation (labels,
+objects, segments, support_plane, as segment(..., segments=True) returns)
+with the frame's own fields.
 
-index, timestamp_us: the frame's position in the source and its time stamp.
+index, timestamp_us: the frame's position in the source and its time stamp
+    (a live source's dropped frames leave gaps in index).
 points: float32 (H, W, 3) (depth frames) or (N, 3), metres, NaN = no data.
 labels: uint32, the points' leading shape: per point the id of its segment
     (with two levels, of its part); ids stay with a segment from frame to frame.
 objects: uint32 per-point object ids like labels, or None with one level.
-segments: the "objects" list of the frame's JSON document (README schema).
+segments: per object a dict (its parts inside): the "objects" list of the
+    frame's JSON document (README schema), vectors and axes as float64 arrays.
 support_plane: {"id", "normal", "d"} or None. new_ids, gone_ids: lists of ids.
 error: "" or why this frame failed (its labels are then all 0).
 )doc";
@@ -228,14 +238,11 @@ device disappears) the iteration raises RuntimeError after the last frame.
 )doc";
 
 void bind_frame(py::module_& module) {
-  py::class_<PyFrame>(module, "Frame", kFrameDoc)
+  // Its labels, objects, segments and support_plane are the Segmentation's.
+  py::class_<PyFrame, PySegmentation>(module, "Frame", kFrameDoc)
       .def_readonly("index", &PyFrame::index, "The frame's index in the source (a gap means lost frames).")
       .def_readonly("timestamp_us", &PyFrame::timestamp_us, "The source's time stamp, microseconds (0 if none).")
       .def_readonly("points", &PyFrame::points, "float32 (H, W, 3) or (N, 3) points, NaN = no data.")
-      .def_readonly("labels", &PyFrame::labels, "uint32 segment (part) id per point, 0 = no data.")
-      .def_readonly("objects", &PyFrame::objects, "uint32 object id per point, or None with one level.")
-      .def_readonly("segments", &PyFrame::segments, "The JSON document's \"objects\" list.")
-      .def_readonly("support_plane", &PyFrame::support_plane, "{\"id\", \"normal\", \"d\"} or None.")
       .def_readonly("new_ids", &PyFrame::new_ids, "Ids first seen in this frame.")
       .def_readonly("gone_ids", &PyFrame::gone_ids, "Ids of the previous frame not seen in this one.")
       .def_readonly("error", &PyFrame::error, "Why this frame failed, or \"\".")
@@ -266,14 +273,15 @@ or .ply files or a folder of them.
 
 path: the recording (str or os.PathLike). config: as segment()'s.
 inflight: frames segmented at once. threads: None for every core, or a
-count. frames: stop after this many frames (None: all).
+count. frames: yield this many frames, the first of the recording (None: all).
 )doc") + kStreamMethodsDoc).c_str());
   replay.def(py::init([](PathArg path, ConfigArg config, unsigned inflight, std::optional<int> threads,
                          std::optional<std::uint64_t> frames) {
                const SceneConfig scene_config = config_from(config);
                threads = thread_count(threads);
+               // Lossless: the first `frames` of the source are the frames yielded.
                auto source = open(path_string(path), SourceLimits{frames, std::nullopt});
-               return std::make_unique<Replay>(std::move(source), scene_config, inflight, threads);
+               return std::make_unique<Replay>(std::move(source), scene_config, inflight, threads, frames);
              }),
              py::arg("path"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
              py::arg("frames") = py::none());
@@ -282,20 +290,27 @@ count. frames: stop after this many frames (None: all).
 
 void bind_live(py::module_& module) {
   py::class_<Live> live(module, "Live", (std::string(R"doc(
-Segments a live OpenNI2 sensor's frames as they come (as lccp live): frames
-the pipeline has no room for are dropped (see Frame.index for gaps).
+Segments a live OpenNI2 sensor's frames as they come (as lccp live): the
+sensor does not wait, so frames that come while the pipeline (or a slow
+consumer of this iterator) has no room are dropped, the oldest first; the
+frames yielded show them as gaps in Frame.index.
 
 uri: the device's URI (lccp devices lists them; "virtual://synthetic" is the
 built-in virtual sensor). config: as segment()'s. inflight: frames segmented
-at once. threads: None for every core, or a count. frames, seconds: stop
-after this many frames or seconds (None: until close() or Ctrl-C).
+at once. threads: None for every core, or a count. frames: yield this many
+frames (dropped frames do not count: frames=10 yields 10 frames, whatever
+their indices; lccp live --frames counts frames taken from the sensor).
+seconds: stop this long after the first frame was asked for. None: until
+close() or Ctrl-C.
 )doc") + kStreamMethodsDoc).c_str());
   live.def(py::init([](const std::string& uri, ConfigArg config, unsigned inflight, std::optional<int> threads,
                        std::optional<std::uint64_t> frames, std::optional<double> seconds) {
              const SceneConfig scene_config = config_from(config);
              threads = thread_count(threads);
-             auto source = open(uri, SourceLimits{frames, seconds});
-             return std::make_unique<Live>(std::move(source), scene_config, inflight, threads);
+             if (frames && *frames == 0) throw py::value_error("frames: expected None or a positive number, got 0");
+             // The sensor runs on while frames are dropped: the stream counts what it yields.
+             auto source = open(uri, SourceLimits{std::nullopt, seconds});
+             return std::make_unique<Live>(std::move(source), scene_config, inflight, threads, frames);
            }),
            py::arg("uri"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
            py::arg("frames") = py::none(), py::arg("seconds") = py::none());

@@ -20,8 +20,29 @@
 namespace lccp::ros_node {
 namespace {
 
+// Private parameters stay on the parameter server after the node exits: rosrun's
+// `_input:=foo` sets /lccp_ros/input there (wiki.ros.org/Remapping%20Arguments,
+// "assignment for private node parameters"; wiki.ros.org/Parameter%20Server), and
+// a later run without it reads it again. So an error about parameters names each
+// one set there and the command that clears it.
+Error parameter_error(const std::string& problem, const ros::NodeHandle& private_node,
+                      const std::vector<std::string>& names) {
+  std::string commands;
+  std::size_t count = 0;
+  for (const std::string& name : names) {
+    if (!private_node.hasParam(name)) continue;
+    commands += (count++ == 0 ? "rosparam delete " : "; rosparam delete ") + private_node.resolveName(name);
+  }
+  if (count == 0) return Error(problem);
+  const bool one = count == 1;
+  return Error(problem + " (" + (one ? "it stays" : "they stay") +
+               " on the parameter server after the node exits, and later runs read " + (one ? "it" : "them") +
+               " too: `" + commands + "` clears " + (one ? "it" : "them") + ")");
+}
+
 // ~KEY values as the config's text: bool, int, double (shortest exact) or string.
-std::string parameter_text(const XmlRpc::XmlRpcValue& value, const std::string& name) {
+std::string parameter_text(const XmlRpc::XmlRpcValue& value, const std::string& name,
+                           const ros::NodeHandle& private_node) {
   XmlRpc::XmlRpcValue copy = value;  // XmlRpcValue's conversions are not const
   switch (copy.getType()) {
     case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(copy) ? "true" : "false";
@@ -32,7 +53,7 @@ std::string parameter_text(const XmlRpc::XmlRpcValue& value, const std::string& 
       const auto end = std::to_chars(text, text + sizeof text, static_cast<double>(copy)).ptr;
       return std::string(text, end);
     }
-    default: throw Error("parameter ~" + name + " must be a number, a boolean or a string");
+    default: throw parameter_error("~" + name + " must be a number, a boolean or a string", private_node, {name});
   }
 }
 
@@ -55,36 +76,60 @@ T parameter_or(const ros::NodeHandle& private_node, const std::string& name, T f
   return value;
 }
 
+// The private parameters other than ~input, ~config, ~inflight, ~threads: config keys, or unknown.
+std::vector<std::string> config_key_parameters(const ros::NodeHandle& private_node) {
+  std::vector<std::string> names;
+  for (const std::string& name : private_parameter_names(private_node)) {
+    if (name != "input" && name != "config" && name != "inflight" && name != "threads") names.push_back(name);
+  }
+  return names;
+}
+
+Error unknown_parameters_error(const std::vector<std::string>& unknown, const std::vector<std::string>& keys,
+                               const ros::NodeHandle& private_node) {
+  std::string names, list;
+  for (const std::string& name : unknown) names += (names.empty() ? "~" : ", ~") + name;
+  for (const std::string& key : keys) list += (list.empty() ? "" : ", ") + key;
+  return parameter_error("unknown private parameters " + names + " (known: input, config, inflight, threads, " +
+                             list + ")",
+                         private_node, unknown);
+}
+
 // ~config, ~inflight, ~threads and the config keys; unknown names are refused.
 NodeSettings read_settings(const ros::NodeHandle& private_node) {
   NodeSettings settings;
   settings.config = parameter_or<std::string>(private_node, "config", "p1");
   const int inflight = parameter_or(private_node, "inflight", 2);
   const int threads = parameter_or(private_node, "threads", 0);
-  if (inflight < 1 || inflight > 16) throw Error("~inflight must be 1 to 16, not " + std::to_string(inflight));
-  if (threads < 0) throw Error("~threads must be 0 (all cores) or more, not " + std::to_string(threads));
+  if (inflight < 1 || inflight > 16) {
+    throw parameter_error("~inflight must be 1 to 16, not " + std::to_string(inflight), private_node, {"inflight"});
+  }
+  if (threads < 0) {
+    throw parameter_error("~threads must be 0 (all cores) or more, not " + std::to_string(threads), private_node,
+                          {"threads"});
+  }
   settings.frames_in_flight = static_cast<unsigned>(inflight);
   settings.threads = static_cast<unsigned>(threads);
-  const std::vector<std::string> keys = config_parameter_names(settings.config);
+  std::vector<std::string> keys;
+  try {
+    keys = config_parameter_names(settings.config);
+  } catch (const Error& error) {
+    throw parameter_error(std::string("~config: ") + error.what(), private_node, {"config"});
+  }
   std::set<std::string> known(keys.begin(), keys.end());
-  std::string unknown;
-  for (const std::string& name : private_parameter_names(private_node)) {
-    if (name == "input" || name == "config" || name == "inflight" || name == "threads") continue;
+  std::vector<std::string> unknown;
+  for (const std::string& name : config_key_parameters(private_node)) {
     if (!known.count(name)) {
-      unknown += (unknown.empty() ? "~" : ", ~") + name;
+      unknown.push_back(name);
       continue;
     }
     XmlRpc::XmlRpcValue value;
     private_node.getParam(name, value);
     std::string key = name;
     if (key.compare(0, 6, "parts/") == 0) key.replace(0, 6, "parts.");
-    settings.settings.push_back(key + "=" + parameter_text(value, name));
+    settings.settings.push_back(key + "=" + parameter_text(value, name, private_node));
   }
-  if (!unknown.empty()) {
-    std::string list;
-    for (const std::string& key : keys) list += (list.empty() ? "" : ", ") + key;
-    throw Error("unknown private parameters " + unknown + " (known: input, config, inflight, threads, " + list + ")");
-  }
+  if (!unknown.empty()) throw unknown_parameters_error(unknown, keys, private_node);
   return settings;
 }
 
@@ -219,14 +264,22 @@ diagnostic_msgs::DiagnosticStatus diagnostic_status(const NodeDiagnostics& diagn
 LccpRosNode::LccpRosNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node), private_node_(private_node) {
   const std::string input = parameter_or<std::string>(private_node_, "input", "depth");
-  if (input != "depth" && input != "points") throw Error("~input must be depth or points, not " + input);
+  if (input != "depth" && input != "points") {
+    throw parameter_error("~input must be depth or points, not " + input, private_node_, {"input"});
+  }
   const NodeSettings settings = read_settings(private_node_);
   labels_ = private_node_.advertise<sensor_msgs::PointCloud2>("labels", 2);
   label_image_ = private_node_.advertise<sensor_msgs::Image>("label_image", 2);
   segments_ = private_node_.advertise<std_msgs::String>("segments", 2);
   markers_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 2);
   diagnostics_ = node_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 2);
-  segmentation_ = std::make_unique<SegmentationNode>(settings, [this](FrameOutput&& out) { publish(std::move(out)); });
+  try {  // the config's values are checked here (SceneSegmenter)
+    segmentation_ = std::make_unique<SegmentationNode>(settings, [this](FrameOutput&& out) { publish(std::move(out)); });
+  } catch (const Error& error) {
+    std::vector<std::string> names = config_key_parameters(private_node_);
+    names.insert(names.begin(), "config");
+    throw parameter_error(error.what(), private_node_, names);
+  }
   if (input == "depth") {
     info_subscriber_ = node_.subscribe("depth/camera_info", 2, &LccpRosNode::on_camera_info, this);
     image_subscriber_ = node_.subscribe("depth/image_raw", 2, &LccpRosNode::on_depth, this);

@@ -12,7 +12,9 @@
 //       per object and part), /diagnostics once a second.
 // Parameters (private): ~input, ~config (preset or YAML path, default p1),
 //   ~inflight (K, default 2), ~threads (0: all cores), and every config key
-//   (~parts/KEY for the second level) overriding the config.
+//   (~parts/KEY for the second level) overriding the config. They stay on the
+//   parameter server after the node exits, so an error about one names the
+//   `rosparam delete` that clears it.
 #include <memory>
 #include <mutex>
 
@@ -27,8 +29,8 @@ namespace lccp::ros_node {
 
 class LccpRosNode {
  public:
-  // Throws lccp::Error (after a ROS_ERROR naming them) for unknown private
-  // parameters, a bad config, setting or input kind.
+  // Throws lccp::Error (one line, naming them and the `rosparam delete` that
+  // clears them) for unknown private parameters, a bad config, setting or input kind.
   LccpRosNode(ros::NodeHandle node, ros::NodeHandle private_node);
   ~LccpRosNode();
 

@@ -72,8 +72,8 @@ def test_installed_python_module_agrees(prefix, reference, tmp_path):
     (site,) = root.glob("lib/python3*/dist-packages")
     script = ("import lccp_stream, sys\n"
               "cloud = lccp_stream.read_cloud(sys.argv[1])\n"
-              "labels, objects = lccp_stream.segment(cloud['points'], cloud['colors'], segments=True)\n"
-              "print(*[f\"{o['id']} {o['points']}\" for o in objects], sep='\\n')\n")
+              "result = lccp_stream.segment(cloud['points'], cloud['colors'], segments=True)\n"
+              "print(*[f\"{o['id']} {o['points']}\" for o in result.segments], sep='\\n')\n")
     env = dict(os.environ, PYTHONPATH=str(site))
     out = run([sys.executable, "-c", script, CLOUD], cwd=tmp_path, env=env)
     printed = [tuple(int(v) for v in line.split()) for line in out.splitlines()]

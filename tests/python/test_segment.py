@@ -1,5 +1,6 @@
 """segment(): the same labels as the lccp tool, shapes kept, NaN points 0,
 float64 and thread counts changing nothing, configs in every form."""
+import json
 import subprocess
 
 import numpy as np
@@ -64,14 +65,83 @@ def test_one_and_two_threads_give_identical_labels(mosd_cloud):
 
 
 def test_segments_are_the_json_documents_objects(mosd_cloud):
-    labels, objects = lccp_stream.segment(mosd_cloud["points"], config="objects", segments=True)
-    assert isinstance(objects, list) and objects
-    ids = {o["id"] for o in objects}
+    result = lccp_stream.segment(mosd_cloud["points"], config="objects", segments=True)
+    labels, segments = result.labels, result.segments
+    assert isinstance(segments, list) and segments
+    ids = {s["id"] for s in segments}
     assert ids == set(np.unique(labels)) - {0, 1}  # 1: the support plane, not an object
-    for o in objects:
-        assert o["points"] == int((labels == o["id"]).sum())
-        assert o["grasp"] in ("top", "side")
-        assert len(o["obb"]["axes"]) == 3 and o["parts"] == []
+    for s in segments:
+        assert s["points"] == int((labels == s["id"]).sum())
+        assert s["grasp"] in ("top", "side")
+        assert s["obb"]["axes"].shape == (3, 3) and s["parts"] == []
+
+
+def test_segment_result_has_the_names_of_a_frame(mosd_cloud, recording):
+    # The same names for the same things in segment()'s result and a stream's Frame:
+    # labels and objects per point, segments and support_plane per segment.
+    result = lccp_stream.segment(mosd_cloud["points"], config="robot", segments=True)
+    frame = next(iter(lccp_stream.Replay(recording, config="robot", frames=1)))
+    for segmentation in (result, frame):
+        assert isinstance(segmentation, lccp_stream.Segmentation)
+        assert segmentation.labels.dtype == np.uint32 and segmentation.labels.shape == (480, 640)
+        assert segmentation.objects.dtype == np.uint32 and segmentation.objects.shape == (480, 640)
+        assert isinstance(segmentation.segments, list) and isinstance(segmentation.segments[0], dict)
+        assert segmentation.support_plane["id"] == 1
+    with pytest.raises(TypeError, match="labels, objects .per point., segments"):
+        labels, objects = result  # the (labels, objects) tuple it returned before
+    assert isinstance(lccp_stream.segment(mosd_cloud["points"]), np.ndarray)  # the default: labels alone
+
+
+def test_segment_gives_per_point_objects_and_the_support_plane(mosd_cloud):
+    result = lccp_stream.segment(mosd_cloud["points"], config="robot", segments=True)
+    plane = result.support_plane
+    assert plane is not None and plane["id"] == 1
+    assert ((result.objects == 1) == (result.labels == 1)).all()  # the support is one segment on both levels
+    finite = np.isfinite(mosd_cloud["points"]).all(axis=-1)
+    on_plane = result.objects == 1
+    distance = mosd_cloud["points"][on_plane] @ plane["normal"] + plane["d"]
+    assert np.abs(distance).max() < 0.011  # support_distance_m 1 cm of the robot preset
+    assert (result.objects[~finite] == 0).all()
+    for segment in result.segments:
+        assert segment["points"] == int((result.objects == segment["id"]).sum())
+        for part in segment["parts"]:
+            in_part = result.labels == part["id"]
+            assert part["points"] == int(in_part.sum())
+            assert (result.objects[in_part] == segment["id"]).all()  # parts nest in their object
+    one_level = lccp_stream.segment(mosd_cloud["points"], config="p1", segments=True)
+    assert one_level.objects is None and one_level.support_plane is None
+
+
+def test_geometry_comes_as_numpy_float_arrays(tmp_path, source_dir, lccp_binary, mosd_cloud, recording):
+    result = lccp_stream.segment(mosd_cloud["points"], colors=mosd_cloud["colors"], config="robot", segments=True)
+    frame = next(iter(lccp_stream.Replay(recording, config="robot", frames=1)))
+    for segmentation in (result, frame):
+        assert segmentation.support_plane["normal"].dtype == np.float64
+        assert segmentation.support_plane["normal"].shape == (3,)
+        parts = [p for s in segmentation.segments for p in s["parts"]]
+        assert parts
+        for segment in segmentation.segments + parts:
+            shapes = {name: (3,) for name in ("centroid", "principal_extents", "mean_normal")}
+            shapes["principal_axes"] = (3, 3)
+            for name, shape in shapes.items():
+                value = segment[name]
+                assert isinstance(value, np.ndarray) and value.dtype == np.float64 and value.shape == shape, name
+            assert segment["obb"]["center"].shape == (3,) and segment["obb"]["extents"].shape == (3,)
+            axes = segment["obb"]["axes"]
+            assert axes.dtype == np.float64 and axes.shape == (3, 3)
+            np.testing.assert_allclose(np.linalg.norm(axes, axis=1), 1, atol=1e-5)  # one unit axis a row
+    # The numbers are the JSON file's: lccp segment --segments writes the same document.
+    written = tmp_path / "segments.json"
+    subprocess.run([lccp_binary, "segment", str(source_dir / "tests" / "data" / "mosd_test2.pcd"), "--config",
+                    "robot", "-o", str(tmp_path / "labels.pcd"), "--segments", str(written)],
+                   check=True, capture_output=True)
+    document = json.loads(written.read_text())
+    np.testing.assert_array_equal(result.support_plane["normal"], document["support_plane"]["normal"])
+    assert len(result.segments) == len(document["objects"])
+    for ours, theirs in zip(result.segments, document["objects"]):
+        np.testing.assert_array_equal(ours["centroid"], theirs["centroid"])
+        np.testing.assert_array_equal(ours["obb"]["axes"], theirs["obb"]["axes"])
+        np.testing.assert_array_equal(ours["principal_axes"], theirs["principal_axes"])
 
 
 def test_config_forms_agree(tmp_path, source_dir, mosd_cloud):
@@ -97,7 +167,7 @@ def test_config_objects(source_dir):
 
 
 def test_two_levels_give_parts_within_objects(mosd_cloud):
-    labels, objects = lccp_stream.segment(mosd_cloud["points"], config="robot", segments=True)
-    assert labels.shape == (480, 640)
-    parts = [p for o in objects for p in o["parts"]]
-    assert parts and {p["id"] for p in parts} <= set(np.unique(labels))
+    result = lccp_stream.segment(mosd_cloud["points"], config="robot", segments=True)
+    assert result.labels.shape == (480, 640)
+    parts = [p for s in result.segments for p in s["parts"]]
+    assert parts and {p["id"] for p in parts} <= set(np.unique(result.labels))

@@ -108,6 +108,18 @@ def test_live_virtual_sensor():
     assert all(f.labels.shape == f.points.shape[:2] for f in frames)
 
 
+def test_live_frames_counts_the_frames_it_yields():
+    # A consumer slower than the sensor's 30 Hz: the live source drops the frames that
+    # come while there is no room (the oldest first), and frames=10 still yields 10.
+    indices = []
+    for frame in lccp_stream.Live("virtual://synthetic", frames=10, inflight=1, threads=1):
+        indices.append(frame.index)
+        assert frame.error == "" and frame.labels.shape == (480, 640)
+        time.sleep(0.2)
+    assert len(indices) == 10
+    assert indices == sorted(set(indices))  # in order; the gaps are the dropped frames
+
+
 def test_a_disappearing_device_raises_runtime_error():
     live = lccp_stream.Live("virtual://synthetic?frames=2")
     frames = []

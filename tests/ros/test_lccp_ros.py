@@ -117,7 +117,8 @@ def play_and_check(bag_path, expected, results, publishers):
     image_pub, info_pub = publishers
     messages = {}
     with rosbag.Bag(bag_path) as bag:
-        for topic, message, _ in bag.read_messages():
+        for topic, message, bag_time in bag.read_messages():
+            assert bag_time == message.header.stamp, (topic, bag_time, message.header.stamp)
             messages.setdefault(message.header.stamp.to_nsec(), {})[topic] = message
     stamps = sorted(messages)
     assert len(stamps) == len(expected), (len(stamps), len(expected))

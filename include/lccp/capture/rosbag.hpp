@@ -27,8 +27,11 @@ bool rosbag_supported();
 std::unique_ptr<FrameSource> open_rosbag(const std::filesystem::path& path, const std::string& topic = {});
 
 // Writes every depth frame of `source` to a bag as openni2_camera publishes
-// them: /depth/image_raw (16UC1) and /depth/camera_info, both stamped with the
-// frame's timestamp_us. K is fx = width / (2 tan(hfov / 2)) (in double),
+// them: /depth/image_raw (16UC1) and /depth/camera_info, both stamped (header
+// and bag time) with the wall-clock time the recording of the bag started plus
+// the frame's offset from the first frame (timestamp_us - the first one's): an
+// .oni holds no wall-clock time, so a bag of one starts when it is written,
+// and open_rosbag gives timestamps in microseconds since the Unix epoch. K is fx = width / (2 tan(hfov / 2)) (in double),
 // cx = width / 2, so that open_rosbag recovers the fields of view bit for bit
 // (checked for every frame) and back-projection gives the same points. The
 // file appears only when complete (PendingFile). Stops early, keeping the

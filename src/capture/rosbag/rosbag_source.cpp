@@ -1,5 +1,6 @@
 // The rosbag frame source and bag recording (C++20, no ROS header: the bag is
 // read and written through ros_frames.hpp, compiled as C++17).
+#include <chrono>
 #include <cmath>
 
 #include <spdlog/spdlog.h>
@@ -121,6 +122,28 @@ class RosbagSource final : public FrameSource {
   bool warned_ = false;
 };
 
+// Header stamps for recorded frames, in microseconds since the Unix epoch: the
+// time the recording of the bag started plus each frame's offset from the first
+// frame's timestamp. A frame's own timestamp is relative (an .oni's count from
+// its start, a device's from the device's), and an .oni holds no wall-clock
+// time (its file header: version, largest timestamp, node count), so the time
+// of writing the bag stands for the time the frames were taken.
+class BagStamps {
+ public:
+  std::uint64_t stamp_us(const Frame& frame) {
+    if (frames_++ == 0) first_us_ = frame.timestamp_us;
+    const std::uint64_t offset = frame.timestamp_us >= first_us_ ? frame.timestamp_us - first_us_ : 0;
+    return start_us_ + offset;
+  }
+
+ private:
+  std::uint64_t start_us_ = static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count());
+  std::uint64_t first_us_ = 0;  // the first frame's timestamp
+  std::uint64_t frames_ = 0;
+};
+
 }  // namespace
 
 bool rosbag_supported() { return true; }
@@ -137,10 +160,13 @@ std::uint64_t record_bag(FrameSource& source, const std::filesystem::path& outpu
   // named when complete (lccp/io/atomic_file.hpp).
   PendingFile pending = PendingFile::named(output);
   ros_bridge::BagWriter writer(pending.temporary_path().string());
+  BagStamps stamps;
   std::uint64_t frames = 0;
   while (std::optional<Frame> frame = source.next(stop)) {
     if (!frame->depth) throw Error("record-bag needs depth frames; the source gives point clouds");
-    writer.write_depth(ros_bridge::to_depth_message(*frame, "camera_depth_optical_frame"));
+    ros_bridge::DepthMessage depth = ros_bridge::to_depth_message(*frame, "camera_depth_optical_frame");
+    depth.stamp_ns = stamps.stamp_us(*frame) * 1000;
+    writer.write_depth(depth);
     ++frames;
   }
   if (frames == 0) throw Error("no frames to write; " + output.string() + " not written");
