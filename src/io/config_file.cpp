@@ -109,8 +109,8 @@ Key count_key(std::string_view name, Field field, std::string_view meaning) {
           [=](const LccpConfig& c) { return std::to_string(field(c)); }};
 }
 
-const std::array<Key, 34>& keys() {
-  static const std::array<Key, 34> table{
+const std::array<Key, 35>& keys() {
+  static const std::array<Key, 35> table{
       float_key("region_min_x_m", [](auto& c) -> auto& { return c.region.min_x_m; },
                 "region of interest: points outside the box are not segmented (metres; -inf: unbounded)"),
       float_key("region_max_x_m", [](auto& c) -> auto& { return c.region.max_x_m; }, "region of interest, largest x (inf: unbounded)"),
@@ -153,6 +153,8 @@ const std::array<Key, 34>& keys() {
       float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
       count_key("n_filter_supervoxels", [](auto& c) -> auto& { return c.filter.n_filter_supervoxels; },
                 "segments of <= this many supervoxels merge into a neighbour (A.4)"),
+      count_key("min_object_points", [](auto& c) -> auto& { return c.filter.min_object_points; },
+                "objects of fewer points are dropped: their points get label 0 (0: keep all)"),
       count_key("max_points", [](auto& c) -> auto& { return c.limits.max_points; }, "refuse clouds with more points"),
       count_key("max_voxels", [](auto& c) -> auto& { return c.limits.max_voxels; }, "refuse clouds filling more voxels"),
       count_key("max_growth_passes", [](auto& c) -> auto& { return c.limits.max_growth_passes; },
