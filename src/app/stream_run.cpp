@@ -101,9 +101,11 @@ PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, c
 
 int exit_code(const PipelineRun& run, const FrameSource& source) {
   if (!run.error.empty()) throw Error(run.error);
-  if (!run.interrupted || source.is_live()) return kExitDone;
+  if (!run.interrupted) return kExitDone;
+  // Live sources too: a stop before the end (or before N frames or S seconds) is 130.
   const auto total = source.frame_count();
-  spdlog::warn("interrupted after {} of {} frames", run.report.frames().size(), total ? std::to_string(*total) : "?");
+  const std::string done = std::to_string(run.report.frames().size());
+  spdlog::warn("interrupted after {} frames", total ? done + " of " + std::to_string(*total) : done);
   return kExitInterrupted;
 }
 
