@@ -284,6 +284,30 @@ TEST_F(CliTest, PresetP2GivesFewerSupervoxelsThanP1) {
   EXPECT_LT(p2_supervoxels, p1_supervoxels) << "P1: " << p1 << "P2: " << p2;
 }
 
+// README: segments numbered 1..K. Stable ids belong to a stream; the files of a
+// batch are unrelated clouds, each numbered 1..K of its own.
+TEST_F(CliTest, EachFileOfABatchHasLabelsOneToK) {
+  const fs::path out = work_ / "out";
+  for (const std::string config : {"p1", "robot"}) {
+    SCOPED_TRACE(config);
+    fs::remove_all(out);
+    expect_success(run({"segment", kOrganizedScene.string(), (kData / "mosd_test34.pcd").string(), "-o", out.string(),
+                        "--config", config, "--quiet"}));
+    for (const char* name : {"mosd_test2.pcd", "mosd_test34.pcd"}) {
+      SCOPED_TRACE(name);
+      const fs::path single = work_ / (std::string("single_") + name);
+      expect_success(run({"segment", (kData / name).string(), "-o", single.string(), "--config", config}));
+      const LabelledCloud batch = read_cloud(out / name), alone = read_cloud(single);
+      ASSERT_TRUE(batch.labels && alone.labels);
+      EXPECT_EQ(*batch.labels, *alone.labels) << "a file of a batch is labelled as it is alone";
+      std::set<std::uint32_t> used(batch.labels->begin(), batch.labels->end());
+      used.erase(0);
+      ASSERT_FALSE(used.empty());
+      EXPECT_EQ(*used.begin(), 1u);
+    }
+  }
+}
+
 // --- C. eval ----------------------------------------------------------------------
 
 TEST_F(CliTest, EvalOfSegmentationScoresAboveFloor) {

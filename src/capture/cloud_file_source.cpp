@@ -49,6 +49,7 @@ class CloudFileSource final : public FrameSource {
 
   std::optional<std::uint64_t> frame_count() const override { return files_.size(); }
   bool is_live() const override { return false; }
+  bool is_stream() const override { return false; }  // unrelated clouds: ids 1..K each
 
  private:
   std::vector<std::filesystem::path> files_;

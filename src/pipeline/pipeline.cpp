@@ -232,7 +232,7 @@ void Run::take(Frame frame) {
 
 void Run::deliver(const Message& message) {
   FrameInFlight& f = *message;
-  if (f.work) f.work->tracker = &tracker_;
+  if (f.work) f.work->tracker = source_.is_stream() ? &tracker_ : nullptr;  // null: ids 1..K of its own
   run_node(kPipelineNodes.size() - 1, message);
   finish_frame(f);
   FrameResult& result = f.result;
