@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -436,6 +437,67 @@ TEST_F(CliTest, EvalWithSupportRangeHoldingZeroFails) {
 }
 
 // --- D. usage errors ----------------------------------------------------------------
+
+// With several inputs or a folder -o names a folder: a .pcd or .ply name there is a
+// mistake (it made a folder y.pcd/), refused before anything is written.
+TEST_F(CliTest, SeveralInputsWithOutputNamingAFileAreRefused) {
+  const std::set<std::string> before = list_dir(work_);
+  for (const char* name : {"y.pcd", "y.ply"}) {
+    expect_usage_error(run({"segment", kOrganizedScene.string(), (kData / "mosd_test34.pcd").string(), "-o",
+                            (work_ / name).string()}),
+                       {name, "must name a folder"});
+    expect_usage_error(run({"segment", kData.string(), "-o", (work_ / name).string()}), {name, "must name a folder"});
+  }
+  EXPECT_EQ(list_dir(work_), before);
+}
+
+// --png writes PNG bytes, so it takes only a .png name.
+TEST_F(CliTest, PngWithAnotherExtensionIsRefused) {
+  const std::set<std::string> before = list_dir(work_);
+  for (const char* name : {"x.jpg", "x.PNG.txt", "x"}) {
+    expect_usage_error(run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), "--png",
+                            (work_ / name).string()}),
+                       {name, ".png"});
+  }
+  EXPECT_EQ(list_dir(work_), before);
+}
+
+// --frames 0 and --seconds 0: one short line, not CLI11's range of 309 digits.
+TEST_F(CliTest, FramesOrSecondsBelowTheirBoundSayWhatIsWrong) {
+  const std::string recording = (kData / ".." / ".." / "recordings" / "mosd_scenes.oni").string();
+  for (const auto& [option, value, phrase] : {std::tuple{"--frames", "0", "--frames: must be at least 1"},
+                                              {"--frames", "0.5", "--frames: must be at least 1"},
+                                              {"--seconds", "0", "--seconds: must be more than 0"},
+                                              {"--seconds", "-2", "--seconds: must be more than 0"}}) {
+    const RunResult r = run({"replay", recording, option, value});
+    expect_usage_error(r, {phrase});
+    EXPECT_LT(r.err.size(), 80u) << r.err;
+  }
+}
+
+// replay without -o writes nothing, so --help shows --save's default as applying with -o.
+TEST_F(CliTest, HelpShowsSavesDefaultOnlyWithOutputFolder) {
+  for (const char* command : {"replay", "live"}) {
+    const RunResult r = run({command, "--help"});
+    expect_success(r);
+    const std::size_t save = r.out.find("--save");
+    ASSERT_NE(save, std::string::npos) << r.out;
+    const std::string line = r.out.substr(save, r.out.find('\n', save) - save);
+    EXPECT_EQ(line.find("=[png]"), std::string::npos) << line;
+    EXPECT_NE(line.find("with -o, default png"), std::string::npos) << line;
+  }
+}
+
+// A URI no driver opens: the URI once, then the reason.
+TEST_F(CliTest, BadUriIsNamedOnce) {
+  for (const std::string uri : {"virtual://no-such-scene", "usb://0000/0000"}) {
+    const RunResult r = run({"live", "--uri", uri, "--frames", "3"}, kQuickTimeoutSeconds);
+    expect_error(r, {uri});
+    std::size_t count = 0;
+    for (std::size_t at = r.err.find(uri); at != std::string::npos; at = r.err.find(uri, at + 1)) ++count;
+    EXPECT_EQ(count, 1u) << r.err;
+  }
+}
 
 TEST_F(CliTest, UsageErrors) {
   const std::set<std::string> before = list_dir(work_);

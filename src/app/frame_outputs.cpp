@@ -10,14 +10,20 @@
 
 namespace lccp::app {
 
+std::string save_help(const std::vector<std::string>& default_save) {
+  std::string defaults;
+  for (const std::string& kind : default_save) defaults += (defaults.empty() ? "" : ",") + kind;
+  // No "=png" after the option: without -o nothing is written, whatever the default.
+  return "per-frame outputs in the -o folder (with -o, default " + defaults +
+         "): pcd, ply (labelled clouds), png (label image), segments (per-segment geometry, JSON)";
+}
+
 void FrameOutputOptions::add_to(CLI::App& command, std::vector<std::string> default_save) {
   save = std::move(default_save);
   command.add_option("-o,--output-dir", directory, "folder for per-frame outputs and summary.json (created if missing)");
-  save_option = command.add_option("--save", save, "per-frame outputs: pcd, ply (labelled clouds), png (label image), "
-                                             "segments (per-segment geometry, JSON)")
+  save_option = command.add_option("--save", save, save_help(save))
                     ->delimiter(',')
-                    ->check(CLI::IsMember({"pcd", "ply", "png", "segments"}))
-                    ->capture_default_str();
+                    ->check(CLI::IsMember({"pcd", "ply", "png", "segments"}));
   command.add_flag("--overlay", overlay, "label images over the shaded depth image, so the scene shows");
   command.add_option("--pcd-data", pcd_data, "PCD encoding: binary_compressed or binary")
       ->check(CLI::IsMember({"binary_compressed", "binary"}))

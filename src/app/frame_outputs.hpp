@@ -30,6 +30,9 @@ struct FrameOutputOptions {
   LabelImageStyle image_style() const;
 };
 
+// --save's help: the kinds, and that the default applies with -o only.
+std::string save_help(const std::vector<std::string>& default_save);
+
 // Output name of a frame: frame_<index>_<timestamp>us, or the source file's stem.
 std::string frame_output_stem(const Frame& frame);
 

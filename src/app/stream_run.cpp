@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include <spdlog/spdlog.h>
@@ -58,6 +59,24 @@ CpuUse cpu_use_since(const CpuTimes& start, double wall_s) {
 
 }  // namespace
 
+namespace {
+
+CLI::Validator lower_bound(bool inclusive, const std::string& message) {
+  return CLI::Validator(
+      [inclusive, message](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        const bool number = end != text.c_str() && *end == '\0';
+        return number && (inclusive ? value >= 1 : value > 0) ? std::string() : message;
+      },
+      "");
+}
+
+}  // namespace
+
+CLI::Validator at_least_one() { return lower_bound(true, "must be at least 1"); }
+CLI::Validator more_than_zero() { return lower_bound(false, "must be more than 0"); }
+
 void add_inflight_option(CLI::App& command, unsigned& frames_in_flight) {
   command.add_option("--inflight", frames_in_flight, "frames processed at once (K, 1 to 16)")
       ->check(CLI::Range(1u, 16u))
@@ -65,9 +84,8 @@ void add_inflight_option(CLI::App& command, unsigned& frames_in_flight) {
 }
 
 void LimitOptions::add_to(CLI::App& command) {
-  command.add_option("--frames", frames, "stop after N frames (N >= 1; default: all)")
-      ->check(CLI::PositiveNumber);
-  command.add_option("--seconds", seconds, "stop after S seconds (S > 0)")->check(CLI::PositiveNumber);
+  command.add_option("--frames", frames, "stop after N frames (N >= 1; default: all)")->check(at_least_one());
+  command.add_option("--seconds", seconds, "stop after S seconds (S > 0)")->check(more_than_zero());
 }
 
 SourceLimits LimitOptions::limits() const {
