@@ -1,6 +1,8 @@
 // End-to-end tests of the `lccp` command line: the real binary is run on real
 // scenes and on broken inputs, with stdout, stderr and the exit status captured.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -187,6 +189,54 @@ TEST_F(CliTest, UnwritablePngRemovesThePcdAlreadyWritten) {
                            (work_ / "absent_folder" / "out.png").string()});
   expect_error(r, {"out.png", "does not exist"});
   EXPECT_EQ(list_dir(work_), before) << "files left behind by: " << r.command;
+}
+
+TEST_F(CliTest, NumberBeyondAFloatIsOutOfRange) {
+  write_bytes(work_ / "huge.yaml", "voxel_size_m: 1e308\n");
+  expect_segment_fails(kOrganizedScene, {"--config", (work_ / "huge.yaml").string()},
+                       {"huge.yaml", "voxel_size_m", "1e308", "out of range"});
+  expect_segment_fails(kOrganizedScene, {"--set", "max_points=4294967296"}, {"max_points", "out of range"});
+}
+
+// A device at the output path is written into, never replaced by a file: a full
+// one fails with the write's error, and the device stays.
+TEST_F(CliTest, FullDeviceAsOutputFailsAndStaysADevice) {
+  const fs::path full = root_ / "full";  // /dev/full's numbers, beside the work folder
+  const fs::path device = ::mknod(full.c_str(), S_IFCHR | 0666, makedev(1, 7)) == 0 ? full : fs::path("/dev/full");
+  for (const char* option : {"--png", "--segments"}) {
+    SCOPED_TRACE(option);
+    const std::set<std::string> before = list_dir(work_);
+    expect_error(run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), option, device.string()}),
+                 {device.string(), "No space left on device"});
+    EXPECT_TRUE(fs::is_character_file(device)) << device << " was replaced";
+    EXPECT_EQ(list_dir(work_), before);
+  }
+}
+
+// /dev/stdout is this process's standard output: the JSON goes there, then the summary.
+TEST_F(CliTest, SegmentsToStandardOutput) {
+  const RunResult r = run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), "--segments", "/dev/stdout"});
+  expect_success(r);
+  EXPECT_EQ(r.out.rfind("{\"frame\":0,", 0), 0u) << r.out.substr(0, 200);
+  const std::size_t summary = r.out.find("points 307200");
+  ASSERT_NE(summary, std::string::npos) << r.out.substr(0, 200);
+  EXPECT_GT(summary, 1000u) << "the summary did not follow the JSON";
+  EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+}
+
+// In a batch, an input that fails leaves no output, is named in its error line
+// and makes the exit status 1; the other inputs complete.
+TEST_F(CliTest, FailedInputOfABatchLeavesNoOutputAndFailsTheRun) {
+  write_bytes(work_ / "far.pcd", ascii_pcd({"x", "y", "z"}, 3, 1, {"0 0 1", "0 0.01 1", "600 0 1"}));
+  const fs::path out = work_ / "out";
+  const RunResult r = run({"segment", (work_ / "far.pcd").string(), kOrganizedScene.string(), "-o", out.string()});
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("lccp: error: " + (work_ / "far.pcd").string() + ": ", 0), 0u);
+  EXPECT_NE(r.err.find("max_coordinate_m"), std::string::npos);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  EXPECT_NE(r.out.find("2 received + 0 sensor gaps = 1 completed + 1 failed"), std::string::npos);
+  EXPECT_EQ(list_dir(out), (std::set<std::string>{"mosd_test2.pcd", "summary.json"}));
 }
 
 // --- B. happy path ----------------------------------------------------------------

@@ -61,7 +61,7 @@ FrameWriter::FrameWriter(const FrameOutputOptions& options) : options_(options),
 }
 
 void FrameWriter::write(const FrameResult& result) {
-  if (directory_.empty()) return;
+  if (directory_.empty() || !result.error.empty()) return;  // a failed frame has no labels to write
   const std::string name = frame_output_stem(result.frame);
   // Frames named after their input file may share a stem (a.pcd in two folders);
   // frame_<index>_... names are unique by the index.
@@ -74,8 +74,7 @@ void FrameWriter::write(const FrameResult& result) {
 std::vector<FileBytes> FrameWriter::frame_files(const FrameResult& result, const std::string& stem) const {
   const PointCloud& cloud = result.frame.cloud;
   const SceneSegmentation& scene = result.segmentation;
-  const Labels no_labels(cloud.size(), 0);
-  const Labels& labels = scene.labels.size() == cloud.size() ? scene.labels : no_labels;
+  const Labels& labels = scene.labels;
   const Labels* objects = scene.objects.size() == cloud.size() ? &scene.objects : nullptr;
   // The labelled clouds come last: write_files_together names the files in
   // this order, so a frame whose cloud exists has all its outputs.

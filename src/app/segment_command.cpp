@@ -56,7 +56,7 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
   if (options.stream.outputs.save_option->count() > 0) {
     throw UsageError("--save is for several inputs; for one, -o's extension picks the format and --png adds the image");
   }
-  if (!options.png.empty() && fs::path(options.png).extension() != ".png") {
+  if (!options.png.empty() && fs::path(options.png).extension() != ".png" && !written_in_place(options.png)) {
     throw UsageError("--png " + options.png + ": the image is written as PNG, so its name must end in .png");
   }
   const SceneSegmenter segmenter(options.stream.config.resolve());

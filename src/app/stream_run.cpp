@@ -72,6 +72,17 @@ CLI::Validator lower_bound(bool inclusive, const std::string& message) {
       "");
 }
 
+// A stream goes on past a frame that failed (a warning); in a batch of files
+// each input is a result of its own, so a failure is an error line naming it.
+void report_failed_frame(const FrameResult& result, const FrameSource& source) {
+  if (source.is_stream()) {
+    spdlog::warn("frame {}: {}", result.frame.index, result.error);
+  } else {
+    const std::string& name = result.frame.file.empty() ? result.frame.name : result.frame.file;
+    std::fprintf(stderr, "lccp: error: %s: %s\n", name.c_str(), result.error.c_str());
+  }
+}
+
 }  // namespace
 
 CLI::Validator at_least_one() { return lower_bound(true, "must be at least 1"); }
@@ -105,7 +116,7 @@ PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, c
   const PipelineOutcome outcome = pipeline.run(
       source,
       [&](FrameResult& result) {
-        if (!result.error.empty()) spdlog::warn("frame {}: {}", result.frame.index, result.error);
+        if (!result.error.empty()) report_failed_frame(result, source);
         if (on_frame) on_frame(result);
         run.report.add(result);
         progress.update(run.report.frames().size());
@@ -119,6 +130,7 @@ PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, c
 
 int exit_code(const PipelineRun& run, const FrameSource& source) {
   if (!run.error.empty()) throw Error(run.error);
+  if (!source.is_stream() && run.report.stats().frames_failed > 0) return kExitError;  // each named on its own line
   if (!run.interrupted) return kExitDone;
   // Live sources too: a stop before the end (or before N frames or S seconds) is 130.
   const auto total = source.frame_count();

@@ -41,6 +41,7 @@ class CloudFileSource final : public FrameSource {
     Frame frame;
     frame.index = next_;
     frame.name = files_[next_].stem().string();
+    frame.file = files_[next_].string();
     frame.cloud = read_cloud(files_[next_]).cloud;
     frame.captured = Clock::now();
     ++next_;

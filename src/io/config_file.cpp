@@ -45,6 +45,10 @@ float parse_float(std::string_view key, const std::string& text) {
   }
   float value = 0.0f;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range && end == text.data() + text.size()) {  // a number, not a float
+    throw Error("config key '" + std::string(key) + "': '" + printable(text) +
+                "' is out of range (a float: magnitude from 1.2e-38 to 3.4e38, or 0)");
+  }
   if (error != std::errc{} || end != text.data() + text.size()) {
     throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not a number");
   }
@@ -54,6 +58,9 @@ float parse_float(std::string_view key, const std::string& text) {
 std::uint32_t parse_count(std::string_view key, const std::string& text) {
   std::uint32_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range && end == text.data() + text.size()) {
+    throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is out of range (at most 4294967295)");
+  }
   if (error != std::errc{} || end != text.data() + text.size()) {
     throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not a whole number >= 0");
   }
