@@ -1,6 +1,10 @@
 // PendingFile and write_files_together: files appear whole or not at all, no
 // temporary name is left behind, and no symlink is ever written through.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -118,6 +122,45 @@ TEST(AtomicFile, ANamedPendingFileIsHiddenUnpredictableAndRemovedUnlessCommitted
   file.commit();
   EXPECT_EQ(entries(dir), std::vector<std::string>{"take.oni"});
   EXPECT_EQ(test::read_bytes(dir / "take.oni"), "written by a library");
+}
+
+// A device with /dev/full's numbers (Linux: char 1, 7; every write fails with
+// ENOSPC) made in `dir`, so that a failing test never touches /dev/full itself.
+// Root may make one (the tests run as root, as CI does); elsewhere /dev/full.
+fs::path full_device(const fs::path& dir) {
+  const fs::path path = dir / "full";
+  if (::mknod(path.c_str(), S_IFCHR | 0666, makedev(1, 7)) == 0) return path;
+  return "/dev/full";
+}
+
+// A device is written into and never replaced: a full one fails as a write does.
+TEST(AtomicFile, ADeviceIsWrittenIntoNeverReplaced) {
+  const fs::path dir = test::scratch_dir("atomic");
+  const fs::path full = full_device(dir);
+  try {
+    write_file_atomically(full, bytes_of("labels"));
+    ADD_FAILURE() << "no error writing to a full device";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_character_file(full)) << full << " was replaced";
+  write_file_atomically(dir / "null_like", bytes_of("a regular file beside it is unaffected"));
+}
+
+// A FIFO is written into (a reader gets the bytes), not replaced by a file.
+TEST(AtomicFile, AFifoIsWrittenIntoNeverReplaced) {
+  const fs::path dir = test::scratch_dir("atomic");
+  const fs::path fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so the writer's open does not wait
+  ASSERT_GE(reader, 0);
+  write_file_atomically(fifo, std::string_view("{\"frames\": 3}\n"));
+  char buffer[64] = {};
+  const ssize_t n = ::read(reader, buffer, sizeof buffer);
+  ::close(reader);
+  EXPECT_EQ(std::string(buffer, n > 0 ? static_cast<std::size_t>(n) : 0), "{\"frames\": 3}\n");
+  EXPECT_TRUE(fs::is_fifo(fifo)) << "the FIFO was replaced";
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"pipe"});
 }
 
 }  // namespace

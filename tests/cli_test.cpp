@@ -1,6 +1,8 @@
 // End-to-end tests of the `lccp` command line: the real binary is run on real
 // scenes and on broken inputs, with stdout, stderr and the exit status captured.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -13,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -188,6 +191,54 @@ TEST_F(CliTest, UnwritablePngRemovesThePcdAlreadyWritten) {
   EXPECT_EQ(list_dir(work_), before) << "files left behind by: " << r.command;
 }
 
+TEST_F(CliTest, NumberBeyondAFloatIsOutOfRange) {
+  write_bytes(work_ / "huge.yaml", "voxel_size_m: 1e308\n");
+  expect_segment_fails(kOrganizedScene, {"--config", (work_ / "huge.yaml").string()},
+                       {"huge.yaml", "voxel_size_m", "1e308", "out of range"});
+  expect_segment_fails(kOrganizedScene, {"--set", "max_points=4294967296"}, {"max_points", "out of range"});
+}
+
+// A device at the output path is written into, never replaced by a file: a full
+// one fails with the write's error, and the device stays.
+TEST_F(CliTest, FullDeviceAsOutputFailsAndStaysADevice) {
+  const fs::path full = root_ / "full";  // /dev/full's numbers, beside the work folder
+  const fs::path device = ::mknod(full.c_str(), S_IFCHR | 0666, makedev(1, 7)) == 0 ? full : fs::path("/dev/full");
+  for (const char* option : {"--png", "--segments"}) {
+    SCOPED_TRACE(option);
+    const std::set<std::string> before = list_dir(work_);
+    expect_error(run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), option, device.string()}),
+                 {device.string(), "No space left on device"});
+    EXPECT_TRUE(fs::is_character_file(device)) << device << " was replaced";
+    EXPECT_EQ(list_dir(work_), before);
+  }
+}
+
+// /dev/stdout is this process's standard output: the JSON goes there, then the summary.
+TEST_F(CliTest, SegmentsToStandardOutput) {
+  const RunResult r = run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), "--segments", "/dev/stdout"});
+  expect_success(r);
+  EXPECT_EQ(r.out.rfind("{\"frame\":0,", 0), 0u) << r.out.substr(0, 200);
+  const std::size_t summary = r.out.find("points 307200");
+  ASSERT_NE(summary, std::string::npos) << r.out.substr(0, 200);
+  EXPECT_GT(summary, 1000u) << "the summary did not follow the JSON";
+  EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+}
+
+// In a batch, an input that fails leaves no output, is named in its error line
+// and makes the exit status 1; the other inputs complete.
+TEST_F(CliTest, FailedInputOfABatchLeavesNoOutputAndFailsTheRun) {
+  write_bytes(work_ / "far.pcd", ascii_pcd({"x", "y", "z"}, 3, 1, {"0 0 1", "0 0.01 1", "600 0 1"}));
+  const fs::path out = work_ / "out";
+  const RunResult r = run({"segment", (work_ / "far.pcd").string(), kOrganizedScene.string(), "-o", out.string()});
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("lccp: error: " + (work_ / "far.pcd").string() + ": ", 0), 0u);
+  EXPECT_NE(r.err.find("max_coordinate_m"), std::string::npos);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  EXPECT_NE(r.out.find("2 received + 0 sensor gaps = 1 completed + 1 failed"), std::string::npos);
+  EXPECT_EQ(list_dir(out), (std::set<std::string>{"mosd_test2.pcd", "summary.json"}));
+}
+
 // --- B. happy path ----------------------------------------------------------------
 
 TEST_F(CliTest, SegmentsOrganizedSceneToPcdAndPng) {
@@ -282,6 +333,30 @@ TEST_F(CliTest, PresetP2GivesFewerSupervoxelsThanP1) {
   const unsigned long p2_supervoxels = summary_count(p2, "supervoxels");
   EXPECT_GT(p2_supervoxels, 0u);
   EXPECT_LT(p2_supervoxels, p1_supervoxels) << "P1: " << p1 << "P2: " << p2;
+}
+
+// README: segments numbered 1..K. Stable ids belong to a stream; the files of a
+// batch are unrelated clouds, each numbered 1..K of its own.
+TEST_F(CliTest, EachFileOfABatchHasLabelsOneToK) {
+  const fs::path out = work_ / "out";
+  for (const std::string config : {"p1", "robot"}) {
+    SCOPED_TRACE(config);
+    fs::remove_all(out);
+    expect_success(run({"segment", kOrganizedScene.string(), (kData / "mosd_test34.pcd").string(), "-o", out.string(),
+                        "--config", config, "--quiet"}));
+    for (const char* name : {"mosd_test2.pcd", "mosd_test34.pcd"}) {
+      SCOPED_TRACE(name);
+      const fs::path single = work_ / (std::string("single_") + name);
+      expect_success(run({"segment", (kData / name).string(), "-o", single.string(), "--config", config}));
+      const LabelledCloud batch = read_cloud(out / name), alone = read_cloud(single);
+      ASSERT_TRUE(batch.labels && alone.labels);
+      EXPECT_EQ(*batch.labels, *alone.labels) << "a file of a batch is labelled as it is alone";
+      std::set<std::uint32_t> used(batch.labels->begin(), batch.labels->end());
+      used.erase(0);
+      ASSERT_FALSE(used.empty());
+      EXPECT_EQ(*used.begin(), 1u);
+    }
+  }
 }
 
 // --- C. eval ----------------------------------------------------------------------
@@ -412,6 +487,67 @@ TEST_F(CliTest, EvalWithSupportRangeHoldingZeroFails) {
 }
 
 // --- D. usage errors ----------------------------------------------------------------
+
+// With several inputs or a folder -o names a folder: a .pcd or .ply name there is a
+// mistake (it made a folder y.pcd/), refused before anything is written.
+TEST_F(CliTest, SeveralInputsWithOutputNamingAFileAreRefused) {
+  const std::set<std::string> before = list_dir(work_);
+  for (const char* name : {"y.pcd", "y.ply"}) {
+    expect_usage_error(run({"segment", kOrganizedScene.string(), (kData / "mosd_test34.pcd").string(), "-o",
+                            (work_ / name).string()}),
+                       {name, "must name a folder"});
+    expect_usage_error(run({"segment", kData.string(), "-o", (work_ / name).string()}), {name, "must name a folder"});
+  }
+  EXPECT_EQ(list_dir(work_), before);
+}
+
+// --png writes PNG bytes, so it takes only a .png name.
+TEST_F(CliTest, PngWithAnotherExtensionIsRefused) {
+  const std::set<std::string> before = list_dir(work_);
+  for (const char* name : {"x.jpg", "x.PNG.txt", "x"}) {
+    expect_usage_error(run({"segment", kOrganizedScene.string(), "-o", out_pcd().string(), "--png",
+                            (work_ / name).string()}),
+                       {name, ".png"});
+  }
+  EXPECT_EQ(list_dir(work_), before);
+}
+
+// --frames 0 and --seconds 0: one short line, not CLI11's range of 309 digits.
+TEST_F(CliTest, FramesOrSecondsBelowTheirBoundSayWhatIsWrong) {
+  const std::string recording = (kData / ".." / ".." / "recordings" / "mosd_scenes.oni").string();
+  for (const auto& [option, value, phrase] : {std::tuple{"--frames", "0", "--frames: must be at least 1"},
+                                              {"--frames", "0.5", "--frames: must be at least 1"},
+                                              {"--seconds", "0", "--seconds: must be more than 0"},
+                                              {"--seconds", "-2", "--seconds: must be more than 0"}}) {
+    const RunResult r = run({"replay", recording, option, value});
+    expect_usage_error(r, {phrase});
+    EXPECT_LT(r.err.size(), 80u) << r.err;
+  }
+}
+
+// replay without -o writes nothing, so --help shows --save's default as applying with -o.
+TEST_F(CliTest, HelpShowsSavesDefaultOnlyWithOutputFolder) {
+  for (const char* command : {"replay", "live"}) {
+    const RunResult r = run({command, "--help"});
+    expect_success(r);
+    const std::size_t save = r.out.find("--save");
+    ASSERT_NE(save, std::string::npos) << r.out;
+    const std::string line = r.out.substr(save, r.out.find('\n', save) - save);
+    EXPECT_EQ(line.find("=[png]"), std::string::npos) << line;
+    EXPECT_NE(line.find("with -o, default png"), std::string::npos) << line;
+  }
+}
+
+// A URI no driver opens: the URI once, then the reason.
+TEST_F(CliTest, BadUriIsNamedOnce) {
+  for (const std::string uri : {"virtual://no-such-scene", "usb://0000/0000"}) {
+    const RunResult r = run({"live", "--uri", uri, "--frames", "3"}, kQuickTimeoutSeconds);
+    expect_error(r, {uri});
+    std::size_t count = 0;
+    for (std::size_t at = r.err.find(uri); at != std::string::npos; at = r.err.find(uri, at + 1)) ++count;
+    EXPECT_EQ(count, 1u) << r.err;
+  }
+}
 
 TEST_F(CliTest, UsageErrors) {
   const std::set<std::string> before = list_dir(work_);

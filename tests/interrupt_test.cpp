@@ -187,5 +187,59 @@ TEST(Interrupt, ReplayInterruptedFromTheFirstMillisecondEndsWithAValidSummary) {
   }
 }
 
+// Starts the binary with stdout and stderr into files in `dir`; once it catches
+// `signal_number` and has written its first frame into dir/out (or 120 s have
+// passed), signals it. Returns the exit code (1000 + n: killed by signal n).
+int signal_after_first_frame(const std::vector<std::string>& args, const fs::path& dir, int signal_number) {
+  std::vector<std::string> argv_text{LCCP_BINARY};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  const pid_t pid = test::spawn_process(std::move(argv_text), dir / "stdout", dir / "stderr");
+  wait_until_catching(pid, signal_number);
+  const auto give_up = Clock::now() + std::chrono::seconds(120);
+  const auto has_frame = [&] {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(dir / "out", error))
+      if (entry.path().extension() == ".png") return true;
+    return false;
+  };
+  while (!has_frame() && Clock::now() < give_up) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  kill(pid, signal_number);
+  return wait_for(pid);
+}
+
+// README, exit status: 130 "stopped by Ctrl-C or SIGTERM before the end", live
+// runs as much as replays, with the same warning.
+TEST(Interrupt, LiveStoppedBySigintOrSigtermExits130AndSaysSo) {
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE("signal " + std::to_string(signal_number));
+    const fs::path dir = test::scratch_dir("stop_live");
+    const int code = signal_after_first_frame({"live", "--uri", "virtual://synthetic", "--seconds", "60", "-o",
+                                               (dir / "out").string(), "--quiet"},
+                                              dir, signal_number);
+    EXPECT_EQ(code, 130) << "(1000 + n: killed by signal n)";
+    const std::string err = test::read_bytes(dir / "stderr");
+    EXPECT_NE(err.find("interrupted after "), std::string::npos) << err;
+    const std::string summary = test::read_bytes(dir / "out" / "summary.json");
+    test::expect_counts_add_up(summary, test::read_bytes(dir / "stdout"));
+    EXPECT_GE(test::json_number(summary, "frames_completed"), 1) << summary;
+  }
+}
+
+// A replay never drops a frame, a stopped one included: the frame read while the
+// stop came is not received.
+TEST(Interrupt, ReplayStoppedMidwayDropsNothing) {
+  const fs::path dir = test::scratch_dir("stop_replay");
+  const int code = signal_after_first_frame({"replay", kRecording.string(), "-o", (dir / "out").string(), "--quiet"},
+                                            dir, SIGINT);
+  EXPECT_EQ(code, 130) << "(1000 + n: killed by signal n)";
+  const std::string summary = test::read_bytes(dir / "out" / "summary.json");
+  const std::string out = test::read_bytes(dir / "stdout");
+  test::expect_counts_add_up(summary, out);
+  EXPECT_EQ(test::json_number(summary, "frames_dropped"), 0) << summary;
+  EXPECT_LT(test::json_number(summary, "frames_completed"), 62) << "the stop came after the end";
+  EXPECT_NE(out.find(" + 0 dropped"), std::string::npos) << out;
+  EXPECT_NE(test::read_bytes(dir / "stderr").find("interrupted after "), std::string::npos);
+}
+
 }  // namespace
 }  // namespace lccp

@@ -552,12 +552,15 @@ double hue_distance(double a, double b) {
   return std::min(d, 360.0 - d);
 }
 
-TEST(IoWriterPng, PartsAreShadesOfTheirObjectsHue) {
+// Parts are told apart by hue, each within 60 deg of its object's hue, so the
+// object stays one family of colours.
+TEST(IoWriterPng, PartsHaveHuesOfTheirOwnNearTheirObjectsHue) {
   const PointCloud cloud = organized_cloud(12, 9, false);
   const Labels labels = labels_for(cloud), objects = objects_for(labels);
   const Image image = decode_png(encode_label_png(cloud, labels, LabelImageStyle::labels, &objects));
   ASSERT_EQ(image.pixels.size(), cloud.size());
   std::array<std::optional<HueLightness>, 10> seen;  // per part label
+  std::array<std::uint32_t, 10> object_of{};
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     SCOPED_TRACE("pixel " + std::to_string(i));
     const auto pixel = image.pixels[i];
@@ -568,21 +571,25 @@ TEST(IoWriterPng, PartsAreShadesOfTheirObjectsHue) {
       EXPECT_EQ(pixel, label_color(labels[i]));  // the support: as without objects
     } else {
       seen[labels[i]] = hue_lightness(pixel);
+      object_of[labels[i]] = objects[i];
     }
   }
   for (const std::uint32_t part : {1, 2, 3, 4, 5, 6, 8, 9}) {
     ASSERT_TRUE(seen[part].has_value()) << part;
     EXPECT_GT(seen[part]->lightness, 0.2) << part;  // never black or white
     EXPECT_LT(seen[part]->lightness, 0.85) << part;
+    const double object_hue = hue_lightness(label_color(object_of[part])).hue;
+    EXPECT_LE(hue_distance(seen[part]->hue, object_hue), 61.0) << part;  // the object's family
   }
   for (const auto& [first, last] : {std::pair{1u, 3u}, {4u, 6u}, {8u, 9u}})  // the parts of one object
-    for (std::uint32_t a = first; a < last; ++a) {
-      EXPECT_LT(hue_distance(seen[a]->hue, seen[a + 1]->hue), 2.0) << a;             // the object's hue
-      EXPECT_GT(std::abs(seen[a]->lightness - seen[a + 1]->lightness), 0.2) << a;  // told apart
-    }
-  EXPECT_GT(hue_distance(seen[1]->hue, seen[4]->hue), 30.0);  // objects 21, 22 and 23
-  EXPECT_GT(hue_distance(seen[4]->hue, seen[8]->hue), 30.0);
-  EXPECT_GT(hue_distance(seen[1]->hue, seen[8]->hue), 30.0);
+    for (std::uint32_t a = first; a < last; ++a)
+      EXPECT_GT(hue_distance(seen[a]->hue, seen[a + 1]->hue), 40.0) << a;  // told apart by hue
+  // Five consecutive part ids of one object: every two at least 15 deg apart.
+  for (std::uint32_t a = 40; a < 45; ++a)
+    for (std::uint32_t b = a + 1; b < 45; ++b)
+      EXPECT_GT(hue_distance(hue_lightness(part_color(33, a)).hue, hue_lightness(part_color(33, b)).hue), 15.0)
+          << a << " " << b;
+  EXPECT_GT(hue_distance(hue_lightness(label_color(21)).hue, hue_lightness(label_color(22)).hue), 30.0);
 }
 
 TEST(IoWriterPng, ObjectColoursInOverlayAndWithoutObjects) {

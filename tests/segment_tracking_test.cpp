@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <set>
 #include <vector>
@@ -234,6 +235,73 @@ TEST(SegmentTracker, FlatFaceMovingAlongItsNormalKeepsItsId) {
     const TrackedIds ids = tracker.update(scene.frame());
     EXPECT_EQ(ids.object_ids, (Ids{1})) << "frame " << f;
   }
+}
+
+// A plane from `corner` along the axes u and v (metres), sampled every 4 mm, with
+// noise of up to +-3 mm along its normal `n` from a fixed generator.
+Points noisy_plane(const Eigen::Vector3f& corner, const Eigen::Vector3f& u, const Eigen::Vector3f& v,
+                   const Eigen::Vector3f& n, std::mt19937& random) {
+  std::uniform_real_distribution<float> noise(-0.003f, 0.003f);
+  Points points;
+  for (float a = 0; a <= u.norm(); a += 0.004f)
+    for (float b = 0; b <= v.norm(); b += 0.004f)
+      points.push_back(corner + a * u.normalized() + b * v.normalized() + noise(random) * n);
+  return points;
+}
+
+// A floor (1.2 x 1.2 m) and a wall (1.2 x 0.6 m) meeting at a seam, with a box
+// on the floor: in frames 5-8 and 20 the seam is bridged (floor and wall are
+// one object, as when noise joins them), in the others they are two. The wall
+// never moves: it must keep its id through every merge and split, as the box
+// keeps its own.
+TEST(SegmentTracker, LargeSurfaceKeepsItsIdThroughMergesWithItsNeighbour) {
+  std::mt19937 random(7);
+  const Eigen::Vector3f x(1.2f, 0, 0), z(0, 0, 1.2f), up(0, -0.6f, 0);
+  SegmentTracker tracker;
+  std::optional<std::uint32_t> wall_id, floor_id, box_id;
+  for (int f = 0; f < 30; ++f) {
+    SCOPED_TRACE("frame " + std::to_string(f));
+    const Points floor = noisy_plane({-0.6f, 0.5f, 1.0f}, x, z, Eigen::Vector3f::UnitY(), random);
+    const Points wall = noisy_plane({-0.6f, 0.5f, 2.2f}, x, up, Eigen::Vector3f::UnitZ(), random);
+    const bool merged = (f >= 5 && f <= 8) || f == 20;
+    Scene scene;
+    const std::uint32_t floor_object = scene.add(floor);
+    const std::uint32_t wall_object = scene.add(wall, merged ? floor_object : 0);
+    const std::uint32_t box_object = scene.add(box({0, 0.4f, 1.5f}, {0.1f, 0.5f, 1.6f}));
+    const TrackedIds ids = tracker.update(scene.frame());
+    if (f == 0) {
+      floor_id = ids.object_ids[floor_object - 1];
+      wall_id = ids.object_ids[wall_object - 1];
+      box_id = ids.object_ids[box_object - 1];
+    }
+    EXPECT_EQ(ids.object_ids[floor_object - 1], *floor_id);  // the larger surface: the merged object's id
+    EXPECT_EQ(ids.object_ids[box_object - 1], *box_id);
+    if (!merged) {
+      EXPECT_EQ(ids.object_ids[wall_object - 1], *wall_id);
+      EXPECT_TRUE(f == 0 || ids.new_ids.empty());
+    }
+  }
+}
+
+// An object that merged into its neighbour and never split off again: its id
+// lapses with its carrier, and an object appearing there later is new.
+TEST(SegmentTracker, AbsorbedIdLapsesWhenItsCarrierIsGone) {
+  const Points a = box(kA, kA + Eigen::Vector3f(0.2f, 0.1f, 0.1f));
+  const Points b = box(kA + Eigen::Vector3f(0.2f, 0, 0), kA + Eigen::Vector3f(0.3f, 0.1f, 0.1f));
+  SegmentTracker tracker;
+  Scene apart;
+  apart.add(a);
+  apart.add(b);
+  EXPECT_EQ(tracker.update(apart.frame()).object_ids, (Ids{1, 2}));
+  Scene joined;
+  const std::uint32_t ab = joined.add(a);
+  joined.add(b, ab);
+  const TrackedIds merged = tracker.update(joined.frame());
+  EXPECT_EQ(merged.object_ids, (Ids{1}));
+  EXPECT_EQ(merged.gone_ids, (Ids{2}));
+  tracker.update(FrameSegments{});  // the merged object leaves
+  const TrackedIds back = tracker.update(apart.frame());
+  EXPECT_EQ(back.object_ids, (Ids{3, 4}));
 }
 
 // Everything leaves: all previous ids are gone; an empty frame has no ids.

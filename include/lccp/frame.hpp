@@ -32,6 +32,7 @@ struct Frame {
   std::optional<DepthImage> depth; // set by depth sources; cleared once back-projected
   PointCloud cloud;                // set by cloud sources, or by back-projection
   std::string name;                // source name for outputs (e.g. the PCD file's stem)
+  std::string file;                // the file it was read from (cloud files), for messages; else empty
 };
 
 }  // namespace lccp

@@ -26,6 +26,11 @@ class FrameSource {
   // True for sources that run on their own clock (a live sensor, --realtime
   // replay): frames not taken in time are lost, so the pipeline drops the oldest.
   virtual bool is_live() const = 0;
+
+  // True if the frames are one scene over time (a sensor, a recording), so a
+  // segment keeps its id from frame to frame; false for unrelated clouds (a
+  // batch of files), where each frame gets ids 1..K of its own.
+  virtual bool is_stream() const { return true; }
 };
 
 }  // namespace lccp

@@ -42,6 +42,11 @@ Subcommand add_truth_command(CLI::App& cli);
 Subcommand add_profile_command(CLI::App& cli);
 Subcommand add_devices_command(CLI::App& cli);
 
+// Checks of a number option with a one-line message ("--frames: must be at least
+// 1"), where CLI11's own ranges print their bounds in full (1.8e308 as 309 digits).
+CLI::Validator at_least_one();  // N >= 1
+CLI::Validator more_than_zero();  // S > 0
+
 // --config PRESET|FILE and --set key=value, shared by every command that segments.
 struct ConfigOptions {
   std::string file;

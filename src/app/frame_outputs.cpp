@@ -10,14 +10,20 @@
 
 namespace lccp::app {
 
+std::string save_help(const std::vector<std::string>& default_save) {
+  std::string defaults;
+  for (const std::string& kind : default_save) defaults += (defaults.empty() ? "" : ",") + kind;
+  // No "=png" after the option: without -o nothing is written, whatever the default.
+  return "per-frame outputs in the -o folder (with -o, default " + defaults +
+         "): pcd, ply (labelled clouds), png (label image), segments (per-segment geometry, JSON)";
+}
+
 void FrameOutputOptions::add_to(CLI::App& command, std::vector<std::string> default_save) {
   save = std::move(default_save);
   command.add_option("-o,--output-dir", directory, "folder for per-frame outputs and summary.json (created if missing)");
-  save_option = command.add_option("--save", save, "per-frame outputs: pcd, ply (labelled clouds), png (label image), "
-                                             "segments (per-segment geometry, JSON)")
+  save_option = command.add_option("--save", save, save_help(save))
                     ->delimiter(',')
-                    ->check(CLI::IsMember({"pcd", "ply", "png", "segments"}))
-                    ->capture_default_str();
+                    ->check(CLI::IsMember({"pcd", "ply", "png", "segments"}));
   command.add_flag("--overlay", overlay, "label images over the shaded depth image, so the scene shows");
   command.add_option("--pcd-data", pcd_data, "PCD encoding: binary_compressed or binary")
       ->check(CLI::IsMember({"binary_compressed", "binary"}))
@@ -55,7 +61,7 @@ FrameWriter::FrameWriter(const FrameOutputOptions& options) : options_(options),
 }
 
 void FrameWriter::write(const FrameResult& result) {
-  if (directory_.empty()) return;
+  if (directory_.empty() || !result.error.empty()) return;  // a failed frame has no labels to write
   const std::string name = frame_output_stem(result.frame);
   // Frames named after their input file may share a stem (a.pcd in two folders);
   // frame_<index>_... names are unique by the index.
@@ -68,8 +74,7 @@ void FrameWriter::write(const FrameResult& result) {
 std::vector<FileBytes> FrameWriter::frame_files(const FrameResult& result, const std::string& stem) const {
   const PointCloud& cloud = result.frame.cloud;
   const SceneSegmentation& scene = result.segmentation;
-  const Labels no_labels(cloud.size(), 0);
-  const Labels& labels = scene.labels.size() == cloud.size() ? scene.labels : no_labels;
+  const Labels& labels = scene.labels;
   const Labels* objects = scene.objects.size() == cloud.size() ? &scene.objects : nullptr;
   // The labelled clouds come last: write_files_together names the files in
   // this order, so a frame whose cloud exists has all its outputs.

@@ -30,13 +30,16 @@ struct FrameOutputOptions {
   LabelImageStyle image_style() const;
 };
 
+// --save's help: the kinds, and that the default applies with -o only.
+std::string save_help(const std::vector<std::string>& default_save);
+
 // Output name of a frame: frame_<index>_<timestamp>us, or the source file's stem.
 std::string frame_output_stem(const Frame& frame);
 
 // Writes the selected outputs of each finished frame into the folder (created
-// if missing); a frame's files appear together. A frame without labels (it
-// failed) is written with label 0. Throws lccp::Error when two frames would
-// get the same name (two input files of one stem).
+// if missing); a frame's files appear together. A frame that failed leaves no
+// file (its error is reported, stream_run.cpp). Throws lccp::Error when two
+// frames would get the same name (two input files of one stem).
 class FrameWriter {
  public:
   explicit FrameWriter(const FrameOutputOptions& options);

@@ -36,7 +36,7 @@ Subcommand add_record_bag_command(CLI::App& cli) {
   command->add_option("source", options->source, "an .oni recording or a device URI")->required();
   command->add_option("-o,--output", options->output, "the .bag file to write")->required();
   command->add_option("--frames", options->frames, "stop after N frames (default: all; a device: until Ctrl-C)")
-      ->check(CLI::PositiveNumber);
+      ->check(at_least_one());
   return {command, [options](std::stop_token stop) { return run_record_bag(*options, stop); }};
 }
 

@@ -56,6 +56,9 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
   if (options.stream.outputs.save_option->count() > 0) {
     throw UsageError("--save is for several inputs; for one, -o's extension picks the format and --png adds the image");
   }
+  if (!options.png.empty() && fs::path(options.png).extension() != ".png" && !written_in_place(options.png)) {
+    throw UsageError("--png " + options.png + ": the image is written as PNG, so its name must end in .png");
+  }
   const SceneSegmenter segmenter(options.stream.config.resolve());
   refuse_overwriting_input(input, {output, options.png, options.segments});
   const FrameOutputOptions& out = options.stream.outputs;
@@ -84,6 +87,11 @@ int segment_many(const SegmentOptions& options, std::stop_token stop) {
   if (!options.segments.empty()) {
     throw UsageError("--segments names one file: with several inputs use --save pcd,segments");
   }
+  const fs::path folder(options.stream.outputs.directory);
+  if (folder.extension() == ".pcd" || folder.extension() == ".ply") {
+    throw UsageError("-o " + folder.string() + ": with several inputs or a folder, -o must name a folder (each input "
+                     "gets <stem>.pcd in it), not a " + folder.extension().string() + " file");
+  }
   options.stream.outputs.check();
   const auto source = limit_source(open_cloud_files(std::vector<fs::path>(options.inputs.begin(), options.inputs.end())),
                                    options.stream.limits.limits());
@@ -108,7 +116,7 @@ Subcommand add_segment_command(CLI::App& cli) {
   command->get_option("-o")->description(
       "OUT.pcd or OUT.ply for one input (a uint32 label per point), else a folder (created if missing)");
   command->get_option("-o")->required();
-  command->get_option("--save")->default_str("pcd");
+  command->get_option("--save")->description(save_help({"pcd"}) + "; several inputs only");
   options->stream.outputs.save = {"pcd"};
   command->add_option("--png", options->png, "one input: also write a colour image of the labels (organized clouds)");
   command->add_option("--segments", options->segments,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include <spdlog/spdlog.h>
@@ -58,6 +59,35 @@ CpuUse cpu_use_since(const CpuTimes& start, double wall_s) {
 
 }  // namespace
 
+namespace {
+
+CLI::Validator lower_bound(bool inclusive, const std::string& message) {
+  return CLI::Validator(
+      [inclusive, message](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        const bool number = end != text.c_str() && *end == '\0';
+        return number && (inclusive ? value >= 1 : value > 0) ? std::string() : message;
+      },
+      "");
+}
+
+// A stream goes on past a frame that failed (a warning); in a batch of files
+// each input is a result of its own, so a failure is an error line naming it.
+void report_failed_frame(const FrameResult& result, const FrameSource& source) {
+  if (source.is_stream()) {
+    spdlog::warn("frame {}: {}", result.frame.index, result.error);
+  } else {
+    const std::string& name = result.frame.file.empty() ? result.frame.name : result.frame.file;
+    std::fprintf(stderr, "lccp: error: %s: %s\n", name.c_str(), result.error.c_str());
+  }
+}
+
+}  // namespace
+
+CLI::Validator at_least_one() { return lower_bound(true, "must be at least 1"); }
+CLI::Validator more_than_zero() { return lower_bound(false, "must be more than 0"); }
+
 void add_inflight_option(CLI::App& command, unsigned& frames_in_flight) {
   command.add_option("--inflight", frames_in_flight, "frames processed at once (K, 1 to 16)")
       ->check(CLI::Range(1u, 16u))
@@ -65,9 +95,8 @@ void add_inflight_option(CLI::App& command, unsigned& frames_in_flight) {
 }
 
 void LimitOptions::add_to(CLI::App& command) {
-  command.add_option("--frames", frames, "stop after N frames (N >= 1; default: all)")
-      ->check(CLI::PositiveNumber);
-  command.add_option("--seconds", seconds, "stop after S seconds (S > 0)")->check(CLI::PositiveNumber);
+  command.add_option("--frames", frames, "stop after N frames (N >= 1; default: all)")->check(at_least_one());
+  command.add_option("--seconds", seconds, "stop after S seconds (S > 0)")->check(more_than_zero());
 }
 
 SourceLimits LimitOptions::limits() const {
@@ -87,7 +116,7 @@ PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, c
   const PipelineOutcome outcome = pipeline.run(
       source,
       [&](FrameResult& result) {
-        if (!result.error.empty()) spdlog::warn("frame {}: {}", result.frame.index, result.error);
+        if (!result.error.empty()) report_failed_frame(result, source);
         if (on_frame) on_frame(result);
         run.report.add(result);
         progress.update(run.report.frames().size());
@@ -101,9 +130,12 @@ PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, c
 
 int exit_code(const PipelineRun& run, const FrameSource& source) {
   if (!run.error.empty()) throw Error(run.error);
-  if (!run.interrupted || source.is_live()) return kExitDone;
+  if (!source.is_stream() && run.report.stats().frames_failed > 0) return kExitError;  // each named on its own line
+  if (!run.interrupted) return kExitDone;
+  // Live sources too: a stop before the end (or before N frames or S seconds) is 130.
   const auto total = source.frame_count();
-  spdlog::warn("interrupted after {} of {} frames", run.report.frames().size(), total ? std::to_string(*total) : "?");
+  const std::string done = std::to_string(run.report.frames().size());
+  spdlog::warn("interrupted after {} frames", total ? done + " of " + std::to_string(*total) : done);
   return kExitInterrupted;
 }
 

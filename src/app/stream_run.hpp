@@ -43,7 +43,10 @@ PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, c
                          std::stop_token stop, const std::function<void(const FrameResult&)>& on_frame = {});
 
 // The exit code of a run whose outputs are written: throws lccp::Error for its
-// error; 130 if a source with an end (not live) was stopped before it; else 0.
+// error; 1 if a batch of files (not a stream) had inputs that failed, each
+// already named in an error line; 130, after a warning "interrupted after N
+// [of T] frames", if a stop (Ctrl-C, SIGTERM) ended it, live sources
+// included; else 0.
 int exit_code(const PipelineRun& run, const FrameSource& source);
 
 // replay and live: config, per-frame outputs, K, limits, --quiet.

@@ -41,6 +41,7 @@ class CloudFileSource final : public FrameSource {
     Frame frame;
     frame.index = next_;
     frame.name = files_[next_].stem().string();
+    frame.file = files_[next_].string();
     frame.cloud = read_cloud(files_[next_]).cloud;
     frame.captured = Clock::now();
     ++next_;
@@ -49,6 +50,7 @@ class CloudFileSource final : public FrameSource {
 
   std::optional<std::uint64_t> frame_count() const override { return files_.size(); }
   bool is_live() const override { return false; }
+  bool is_stream() const override { return false; }  // unrelated clouds: ids 1..K each
 
  private:
   std::vector<std::filesystem::path> files_;

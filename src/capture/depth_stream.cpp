@@ -68,9 +68,28 @@ DepthStream::~DepthStream() {
   if (listening_) openni::OpenNI::removeDeviceDisconnectedListener(this);
 }
 
+namespace {
+
+// Why OpenNI2 could not open `uri`, without restating it: its extended error is
+// the driver's reason, if any (ours: "virtual sensor URI 'URI': reason"), then
+// "DeviceOpen: Couldn't open device 'URI'", and the caller's message names the
+// URI already.
+std::string open_failure_reason(const std::string& uri) {
+  std::string reason = openni_error();
+  const std::string generic = "DeviceOpen: Couldn't open device '" + uri + "'";
+  if (const auto at = reason.find(generic); at != std::string::npos) reason.erase(at, generic.size());
+  const std::string restated = "'" + uri + "': ";
+  if (const auto at = reason.find(restated); at != std::string::npos) reason.erase(0, at + restated.size());
+  const auto last = reason.find_last_not_of(' ');
+  if (last == std::string::npos) return "no device answers at that URI (lccp devices lists them)";
+  return reason.substr(0, last + 1);
+}
+
+}  // namespace
+
 void DepthStream::open_device(const std::string& uri, const std::string& failure) {
   initialize_openni();
-  if (device_.open(uri.c_str()) != openni::STATUS_OK) throw Error(failure + ": " + openni_error());
+  if (device_.open(uri.c_str()) != openni::STATUS_OK) throw Error(failure + ": " + open_failure_reason(uri));
   uri_ = device_.getDeviceInfo().getUri();
   listening_ = openni::OpenNI::addDeviceDisconnectedListener(this) == openni::STATUS_OK;
 }

@@ -40,6 +40,7 @@ class LimitedSource final : public FrameSource {
     return count ? std::min(*count, *limits_.max_frames) : *limits_.max_frames;
   }
   bool is_live() const override { return source_->is_live(); }
+  bool is_stream() const override { return source_->is_stream(); }
 
  private:
   bool out_of_time() const {

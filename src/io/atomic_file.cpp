@@ -1,7 +1,10 @@
 // PendingFile: O_TMPFILE and linkat(2) where the file system has them (see
 // open(2), "O_TMPFILE"), else an exclusive file with a random name; commit
 // renames over the target (rename(2) replaces the target's directory entry,
-// a symlink included, and never follows it).
+// a symlink included, and never follows it). A target that exists and is not
+// a regular file (a device, a FIFO, a socket, or this process's own
+// descriptor such as /dev/stdout) is written into instead, as cp(1) and a
+// shell's redirection do: renaming over /dev/full would replace the device.
 #include "lccp/io/atomic_file.hpp"
 
 #include <fcntl.h>
@@ -10,7 +13,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
+#include <optional>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -52,6 +57,34 @@ bool link_anonymous(int fd, const fs::path& name) {
   return ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0;
 }
 
+// The descriptor number N if `path` leads, through symlinks, to /proc/self/fd/N
+// or /dev/fd/N (/dev/stdout is /proc/self/fd/1): one of this process's own
+// open files, written through that descriptor (so its offset is shared).
+std::optional<int> own_descriptor(fs::path path) {
+  for (int hop = 0; hop < 8; ++hop) {
+    const std::string text = path.lexically_normal().string();
+    for (const std::string prefix : {"/proc/self/fd/", "/dev/fd/"}) {
+      if (text.rfind(prefix, 0) != 0) continue;
+      int fd = -1;
+      const auto [end, error] = std::from_chars(text.data() + prefix.size(), text.data() + text.size(), fd);
+      if (error == std::errc{} && end == text.data() + text.size()) return fd;
+    }
+    std::error_code ec;
+    if (!fs::is_symlink(path, ec)) return std::nullopt;
+    const fs::path link = fs::read_symlink(path, ec);
+    if (ec) return std::nullopt;
+    path = link.is_absolute() ? link : folder_of(path) / link;
+  }
+  return std::nullopt;
+}
+
+// An existing target that is not a regular file or folder (symlinks followed):
+// a device, a FIFO, a socket. Such a file is written into, never replaced.
+bool is_special_file(const fs::path& target) {
+  struct stat st {};
+  return ::stat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
 }  // namespace
 
 PendingFile::PendingFile(fs::path target) : PendingFile(std::move(target), true) {}
@@ -59,6 +92,7 @@ PendingFile::PendingFile(fs::path target) : PendingFile(std::move(target), true)
 PendingFile PendingFile::named(fs::path target) { return PendingFile(std::move(target), false); }
 
 PendingFile::PendingFile(fs::path target, bool unnamed) : target_(std::move(target)) {
+  if (unnamed && open_in_place()) return;
   const fs::path folder = folder_of(target_);
   if (unnamed) fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
   if (fd_ >= 0) return;  // mode 0644 less the umask, as for any new file
@@ -76,8 +110,25 @@ PendingFile::PendingFile(fs::path target, bool unnamed) : target_(std::move(targ
   if (fd_ < 0) fail(target_, "open", EEXIST);
 }
 
+// This process's own descriptor (/dev/stdout) or a device, FIFO or socket:
+// written in place from the first byte (nothing to name on commit).
+bool PendingFile::open_in_place() {
+  if (const std::optional<int> own = own_descriptor(target_)) {
+    fd_ = ::fcntl(*own, F_DUPFD_CLOEXEC, 0);
+    if (fd_ < 0) fail(target_, "dup", errno);
+  } else if (is_special_file(target_)) {
+    fd_ = ::open(target_.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+    if (fd_ < 0) fail(target_, "open", errno);
+  } else {
+    return false;
+  }
+  in_place_ = true;
+  return true;
+}
+
 PendingFile::PendingFile(PendingFile&& other) noexcept
-    : target_(std::move(other.target_)), named_(std::move(other.named_)), fd_(other.fd_), committed_(other.committed_) {
+    : target_(std::move(other.target_)), named_(std::move(other.named_)), fd_(other.fd_), committed_(other.committed_),
+      in_place_(other.in_place_) {
   other.fd_ = -1;
   other.named_.clear();
 }
@@ -103,6 +154,12 @@ void PendingFile::write(std::string_view text) {
 
 void PendingFile::commit() {
   if (committed_) return;
+  if (in_place_) {  // written as it went; a device may still refuse at close (a full disk over NFS)
+    if (::close(fd_) != 0) fail(target_, "close", errno);
+    fd_ = -1;
+    committed_ = true;
+    return;
+  }
   if (named_.empty()) {
     // A new name: link it directly. An existing one: link under a random
     // name, then rename over the target.
@@ -121,6 +178,8 @@ void PendingFile::commit() {
   if (::rename(named_.c_str(), target_.c_str()) != 0) fail(target_, "rename", errno);
   committed_ = true;
 }
+
+bool written_in_place(const fs::path& path) { return own_descriptor(path) || is_special_file(path); }
 
 void write_file_atomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
   PendingFile file(path);

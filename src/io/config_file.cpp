@@ -46,6 +46,10 @@ float parse_float(std::string_view key, const std::string& text) {
   }
   float value = 0.0f;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range && end == text.data() + text.size()) {  // a number, not a float
+    throw Error("config key '" + std::string(key) + "': '" + printable(text) +
+                "' is out of range (a float: magnitude from 1.2e-38 to 3.4e38, or 0)");
+  }
   if (error != std::errc{} || end != text.data() + text.size()) {
     throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not a number");
   }
@@ -55,6 +59,9 @@ float parse_float(std::string_view key, const std::string& text) {
 std::uint32_t parse_count(std::string_view key, const std::string& text) {
   std::uint32_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range && end == text.data() + text.size()) {
+    throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is out of range (at most 4294967295)");
+  }
   if (error != std::errc{} || end != text.data() + text.size()) {
     throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not a whole number >= 0");
   }
@@ -174,6 +181,8 @@ std::vector<Key> method_keys() {
       float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
       count_key("n_filter_supervoxels", [](auto& c) -> auto& { return c.filter.n_filter_supervoxels; },
                 "segments of <= this many supervoxels merge into a neighbour (A.4)"),
+      count_key("min_object_points", [](auto& c) -> auto& { return c.filter.min_object_points; },
+                "objects of fewer points are dropped: their points get label 0 (0: keep all)"),
   };
 }
 

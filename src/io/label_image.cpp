@@ -178,15 +178,27 @@ std::array<std::uint8_t, 3> label_color(std::uint32_t label) {
   return {byte(c[0]), byte(c[1]), byte(c[2])};
 }
 
-// HSL with the object's hue, saturation 0.85 and the part's lightness: level
-// 2 x part mod 5 of 0.30, 0.42, 0.54, 0.66, 0.78, so part ids n and n + 1 are
-// two or three levels (0.24 or more) apart and only ids five apart share one.
+// A part's own hue within 60 deg either side of its object's (id_hue), HSL
+// saturation 0.85, lightness 0.42, 0.54 or 0.66 by part id mod 3. Objects stay
+// recognisable: each is one family of hues, and the objects' own hues are
+// spread by Fibonacci hashing (neighbouring ids 137 deg apart, so two bands of
+// 120 deg rarely cover the same hues). Parts are told apart by hue, which the eye
+// separates better than lightness (a shade of one hue reads as shading of one
+// surface): the offset is the part id times 1 / phi modulo 1 over the band,
+// the same low-discrepancy sequence, so consecutive part ids (an object's parts
+// get consecutive ids when it is first seen) land 0.38 or 0.62 of the band (46
+// or 74 deg) apart and any five consecutive ones at least 0.146 of it (17 deg;
+// the three-distance theorem). The colour follows the stable ids, so a part
+// keeps it from frame to frame.
 std::array<std::uint8_t, 3> part_color(std::uint32_t object, std::uint32_t part) {
   if (part == 0) return {0, 0, 0};
   if (object == 0 || object == part) return label_color(part);
-  const double lightness = 0.30 + 0.12 * ((2 * std::uint64_t{part}) % 5);
+  constexpr double kBandSextants = 2.0;  // 120 deg
+  const double offset = static_cast<std::uint32_t>(part * 2654435769u) / 4294967296.0 - 0.5;
+  const double hue = std::fmod(id_hue(object) + kBandSextants * offset + 6.0, 6.0);
+  const double lightness = 0.42 + 0.12 * (part % 3);
   const double chroma = (1 - std::abs(2 * lightness - 1)) * 0.85;
-  return hexcone(id_hue(object), chroma, lightness - chroma / 2);
+  return hexcone(hue, chroma, lightness - chroma / 2);
 }
 
 }  // namespace lccp

@@ -4,6 +4,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "lccp/error.hpp"
+
 namespace lccp {
 namespace {
 
@@ -64,6 +66,33 @@ Labels to_ids(const Labels& dense, const std::vector<std::uint32_t>& ids, const 
   return out;
 }
 
+// Drops the objects of fewer than min_points points (FilterConfig::
+// min_object_points): their points and supervoxels get label 0, and the others
+// are numbered 1..K again in their order (largest first, as relabel_by_size
+// left them).
+void drop_small_objects(SegmentationWork& w, std::uint32_t min_points) {
+  const std::uint32_t count = w.result.segment_count;
+  if (min_points == 0 || count == 0) return;
+  std::vector<std::uint32_t> points(std::size_t{count} + 1, 0);
+  for (const std::uint32_t label : w.result.labels) ++points[label];
+  std::vector<std::uint32_t> renamed(std::size_t{count} + 1, 0);
+  std::uint32_t kept = 0;
+  for (std::uint32_t k = 1; k <= count; ++k) {
+    if (points[k] >= min_points) renamed[k] = ++kept;
+  }
+  if (kept == count) return;
+  for (std::uint32_t& label : w.result.labels) label = renamed[label];
+  for (std::uint32_t& segment : w.segment_of_supervoxel) segment = renamed[segment];
+  w.result.segment_count = kept;
+}
+
+// min_object_points applies to objects; parts keep every piece of their object.
+void check_min_object_points(const SceneConfig& config) {
+  if (config.parts && config.parts->filter.min_object_points != 0) {
+    throw Error("config key 'parts.min_object_points' must be 0: it applies to objects; parts keep every piece");
+  }
+}
+
 void rename(SegmentGeometry& segment, const std::vector<std::uint32_t>& ids, std::uint32_t offset) {
   segment.id = ids[offset + segment.id - 1];
   for (Neighbour& n : segment.adjacent) n.id = ids[offset + n.id - 1];
@@ -73,6 +102,7 @@ void rename(SegmentGeometry& segment, const std::vector<std::uint32_t>& ids, std
 
 SceneSegmenter::SceneSegmenter(const SceneConfig& config) : config_(config), objects_(config.objects) {
   validate(config_);
+  check_min_object_points(config_);
 }
 
 SegmentTracker SceneSegmenter::new_tracker() const {
@@ -88,7 +118,10 @@ SceneSegmentation SceneSegmenter::segment(const CloudView& cloud) const {
 void SceneSegmenter::run_stage(Stage stage, SceneWork& w) const {
   const auto start = std::chrono::steady_clock::now();
   switch (stage) {
-    case Stage::parts: partition_objects(w); break;
+    case Stage::parts:
+      drop_small_objects(w.objects, config_.objects.filter.min_object_points);
+      partition_objects(w);
+      break;
     case Stage::geometry: describe(w); break;
     case Stage::ids: assign_ids(w); break;
     default: objects_.run_stage(stage, w.objects); break;  // stages 0-8: one level of LCCP

@@ -27,14 +27,11 @@ class FrameAdmission {
   FrameAdmission(unsigned slots, Enter enter) : free_(slots), enter_(std::move(enter)) {}
 
   // DropPolicy::block: waits for a free slot, then lets the frame in. Returns
-  // false, dropping the frame, after close().
+  // false after close(): the frame is refused (not taken, so not dropped).
   bool enter_when_free(Frame frame) {
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return free_ > 0 || closed_; });
-    if (closed_) {
-      ++dropped_;
-      return false;
-    }
+    if (closed_) return false;
     --free_;
     const std::uint64_t sequence = next_sequence_++;
     lock.unlock();
@@ -43,12 +40,15 @@ class FrameAdmission {
   }
 
   // DropPolicy::drop_oldest: lets the frame in if a slot is free; otherwise it
-  // waits, and the frame that was waiting is dropped.
-  void enter_or_wait(Frame frame) {
+  // waits, and the frame that was waiting is dropped. Returns false after
+  // close(): the frame is refused (not taken, so not dropped).
+  bool enter_or_wait(Frame frame) {
     std::unique_lock lock(mutex_);
+    if (closed_) return false;
     if (waiting_) ++dropped_;
     waiting_ = std::move(frame);
     admit_waiting(lock);
+    return true;
   }
 
   // A frame left the graph: its slot goes to the waiting frame, if any.
@@ -70,7 +70,7 @@ class FrameAdmission {
   }
 
   // Drops the frame still waiting (run() has ended) and returns every drop so far:
-  // frames replaced under drop_oldest, refused after close(), and this one.
+  // frames replaced under drop_oldest, and this one.
   std::uint64_t drop_waiting() {
     std::lock_guard lock(mutex_);
     if (waiting_) ++dropped_;

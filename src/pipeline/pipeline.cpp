@@ -216,20 +216,23 @@ void Run::capture_frames() {
   if (error) fail(*error);  // the frames taken so far, a waiting one included, still complete
 }
 
+// A frame the source hands over once the run is stopping (admission closed) is
+// not received: the stop came first, as if it had come a moment earlier. So a
+// replay stopped by Ctrl-C drops nothing, and a live run counts as dropped only
+// the frames it had no room for.
 void Run::take(Frame frame) {
+  const std::uint64_t index = frame.index;
+  const bool entered = policy_ == DropPolicy::drop_oldest ? admission_.enter_or_wait(std::move(frame))
+                                                          : admission_.enter_when_free(std::move(frame));
+  if (!entered) return;
   ++stats_.frames_received;
-  if (last_index_ && frame.index > *last_index_ + 1) stats_.sensor_gaps += frame.index - *last_index_ - 1;
-  last_index_ = frame.index;
-  if (policy_ == DropPolicy::drop_oldest) {
-    admission_.enter_or_wait(std::move(frame));
-  } else {
-    admission_.enter_when_free(std::move(frame));  // refused (counted) once closed
-  }
+  if (last_index_ && index > *last_index_ + 1) stats_.sensor_gaps += index - *last_index_ - 1;
+  last_index_ = index;
 }
 
 void Run::deliver(const Message& message) {
   FrameInFlight& f = *message;
-  if (f.work) f.work->tracker = &tracker_;
+  if (f.work) f.work->tracker = source_.is_stream() ? &tracker_ : nullptr;  // null: ids 1..K of its own
   run_node(kPipelineNodes.size() - 1, message);
   finish_frame(f);
   FrameResult& result = f.result;

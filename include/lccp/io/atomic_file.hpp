@@ -9,7 +9,12 @@
 // unpredictable name is created exclusively (O_CREAT | O_EXCL | O_NOFOLLOW)
 // instead and removed if not committed. Neither way ever follows a symlink
 // planted at a temporary name, and committing replaces a symlink at the
-// target rather than writing through it.
+// target rather than writing through it. One exception: a target that exists
+// and is not a regular file or folder (a device such as /dev/full, a FIFO, a
+// socket, symlinks followed) or that names one of the process's own
+// descriptors (/dev/stdout, /dev/fd/N, /proc/self/fd/N) is written into as it
+// is, byte by byte, never replaced: its errors (ENOSPC on /dev/full) are the
+// write's, and what was written before a failure stays written.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -46,12 +51,18 @@ class PendingFile {
 
  private:
   PendingFile(std::filesystem::path target, bool unnamed);
+  bool open_in_place();  // a special file or own descriptor: fd_ is the target itself
 
   std::filesystem::path target_;
   std::filesystem::path named_;  // the temporary name, when O_TMPFILE is not available
   int fd_ = -1;
   bool committed_ = false;
+  bool in_place_ = false;  // written into the target directly (open_in_place)
 };
+
+// True if a PendingFile for `path` writes into it in place: a device, FIFO or
+// socket, or one of the process's own descriptors (/dev/stdout).
+bool written_in_place(const std::filesystem::path& path);
 
 // Writes bytes to path so that the file appears only when complete.
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);

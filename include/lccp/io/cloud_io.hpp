@@ -95,8 +95,8 @@ enum class LabelImageStyle { labels, overlay };
 
 // A width x height 8-bit RGB PNG of the labels, one pixel per point. With
 // `objects` (per point the id of its object, as SceneSegmentation::objects)
-// each point is coloured part_color(object, label): an object's parts share
-// its hue and differ in lightness. Without it the bytes are as before.
+// each point is coloured part_color(object, label): an object's parts have
+// hues of their own near its hue. Without it the bytes are as before.
 // Throws lccp::Error for an unorganized cloud or mismatched labels or objects.
 std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels,
                                            LabelImageStyle style = LabelImageStyle::labels,
@@ -124,9 +124,10 @@ void write_label_png(const std::filesystem::path& path, const PointCloud& cloud,
 std::array<std::uint8_t, 3> label_color(std::uint32_t label);
 
 // The colour of part `part` of object `object` in label images with objects:
-// the object's hue (spread over the ids as label_color's), the part's
-// lightness (one of five levels, neighbouring part ids two or three levels
-// apart), never black or white. Black for part 0; label_color(part) where the
+// a hue of its own within 60 deg of the object's hue (label_color(object)'s),
+// consecutive part ids 46 deg or more apart, one of three lightness levels,
+// never black or white (src/io/label_image.cpp argues the choice). Black for
+// part 0; label_color(part) where the
 // part is no object's (object 0) or is the object itself (the support plane,
 // whose part and object ids are the same).
 std::array<std::uint8_t, 3> part_color(std::uint32_t object, std::uint32_t part);

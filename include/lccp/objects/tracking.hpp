@@ -47,6 +47,14 @@ struct TrackedFrame {
   std::uint32_t object_count = 0;
 };
 
+// Ids of objects that merged into a neighbour (tracking.cpp, "Merged and split
+// again"): each as a segment of its own with the cells it had when last seen.
+struct AbsorbedIds {
+  TrackedFrame segments;                // every segment an object; ids: the absorbed ids
+  std::vector<std::uint32_t> carriers;  // per absorbed id: the id of the object that took it in
+  std::vector<std::uint32_t> ages;      // per absorbed id: frames since it was absorbed
+};
+
 }  // namespace detail
 
 class SegmentTracker {
@@ -58,7 +66,11 @@ class SegmentTracker {
   // Matches this frame's segments to the previous frame's and returns their ids.
   // Call once per frame, in frame order. Matching: by overlap (IoU) of the 1 cm
   // cells each segment occupies, greedily, best first; a part inherits only from
-  // a part of the previous object its own object inherited from. New segments
+  // a part of the previous object its own object inherited from. An object that
+  // merged into another (which holds at least a quarter of its cells) keeps its
+  // id with the merged object for up to 30 frames: if it splits off again where
+  // it was, it takes the id back (it is not in new_ids; gone_ids listed it when
+  // it merged). New segments
   // get new ids in dense order, objects first, then parts (a tracker's first
   // frame: object k gets first_id + k - 1). Points whose object label is 0, or
   // that are not finite, are ignored. Throws lccp::Error if the labels do not
@@ -68,6 +80,7 @@ class SegmentTracker {
  private:
   std::uint32_t next_id_;
   detail::TrackedFrame previous_;  // what the next frame is matched against
+  detail::AbsorbedIds absorbed_;   // ids merged into a previous object, which a split gives back
 };
 
 }  // namespace lccp

@@ -51,12 +51,13 @@ struct FrameResult {
 // once on each side:
 //   frames_received + sensor_gaps == frames_completed + frames_failed + frames_dropped
 struct PipelineStats {
-  std::uint64_t frames_received = 0;   // taken from the source
+  std::uint64_t frames_received = 0;   // taken from the source; one it hands over once a stop has
+                                       // closed admission is not taken (a replay stopped drops none)
   std::uint64_t sensor_gaps = 0;       // frames the source skipped: index a then b adds b - a - 1
   std::uint64_t frames_completed = 0;  // handed to the sink with labels
   std::uint64_t frames_failed = 0;     // handed to the sink with a stage error, or the sink threw on them
   std::uint64_t frames_dropped = 0;    // never handed to the sink: the sensor gaps, frames dropped by
-                                       // drop_oldest or left waiting at a stop, frames after the sink threw
+                                       // drop_oldest or left waiting (for a slot) at a stop, frames after the sink threw
   double wall_seconds = 0;
 
   bool adds_up() const {
