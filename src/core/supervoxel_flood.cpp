@@ -24,6 +24,15 @@ struct Voxel {
   Eigen::Vector3f normal;
 };
 
+// A voxel in the flood: its patch once settled, and its nearest claim so far
+// (the patch and its distance), side by side: a neighbour is checked with one
+// memory access.
+struct alignas(16) Claim {
+  std::uint32_t owner = kNone;
+  std::uint32_t claimant = kNone;
+  float distance = kUnreached;
+};
+
 // A patch as a voxel is measured against it: its members' mean as it
 // stands (seeded region growing, Adams and Bischof 1994: a voxel is measured
 // against the region, not its seed), 1 / s for the seed spacing s at its
@@ -97,7 +106,7 @@ class Flood {
         spacing_(config.supervoxels, config.voxels.voxel_size_m, grid.binning),
         cos_max_angle_(std::cos(config.supervoxels.max_normal_angle_deg * std::numbers::pi_v<float> / 180.0f)),
         coloured_(config.supervoxels.color_weight > 0.0f), queue_(max_distance()), voxels_(grid.size()),
-        owner_(grid.size(), kNone), queued_by_(grid.size(), kNone), best_(grid.size(), kUnreached) {
+        claims_(grid.size()) {
     parallel_for_each_index(grid.size(), [&](std::size_t v) {
       const Eigen::Vector3f& x = grid.centroids[v];
       voxels_[v] = {x, config.sensor.depth_tolerance_m(x.z()), normals.directions[v]};
@@ -109,11 +118,13 @@ class Flood {
   void grow(const std::vector<std::uint32_t>& seeds) {
     for (const std::uint32_t v : seeds) plant(v);
     queue_.drain([&](std::uint32_t u, std::uint32_t k) { settle(u, k); });
-    for (std::uint32_t v = 0; v < owner_.size(); ++v) {
-      if (owner_[v] != kNone) continue;
+    for (std::uint32_t v = 0; v < claims_.size(); ++v) {
+      if (claims_[v].owner != kNone) continue;
       plant(v);
       queue_.drain([&](std::uint32_t u, std::uint32_t k) { settle(u, k); });
     }
+    owner_.resize(claims_.size());
+    for (std::size_t v = 0; v < claims_.size(); ++v) owner_[v] = claims_[v].owner;
   }
 
   void refine();
@@ -132,7 +143,7 @@ class Flood {
     const float reach = kReachSeeds * spacing;
     patches_.push_back({voxels_[v].xyz, voxels_[v].normal, grid_.colors[v], 1.0f / spacing, reach * reach});
     sums_.emplace_back();
-    best_[v] = 0;
+    claims_[v].distance = 0;
     queue_.push(0, v, static_cast<std::uint32_t>(patches_.size() - 1));
   }
 
@@ -140,16 +151,17 @@ class Flood {
   // that k admits are queued at their distance to k as it now stands (once
   // per patch: measured when the patch first reaches them).
   void settle(std::uint32_t u, std::uint32_t k) {
-    if (owner_[u] != kNone) return;
-    owner_[u] = k;
+    if (claims_[u].owner != kNone) return;
+    claims_[u].owner = k;
     sums_[k].add(voxels_[u].xyz, voxels_[u].normal, grid_.colors[u], patches_[k]);
     const Patch& patch = patches_[k];
     for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
-      if (owner_[*w] != kNone || queued_by_[*w] == k) continue;
+      Claim& claim = claims_[*w];
+      if (claim.owner != kNone || claim.claimant == k) continue;
       const float d = admitted_distance(*w, patch);
-      if (!(d < best_[*w])) continue;
-      best_[*w] = d;
-      queued_by_[*w] = k;
+      if (!(d < claim.distance)) continue;
+      claim.distance = d;
+      claim.claimant = k;
       queue_.push(d, *w, k);
     }
   }
@@ -165,9 +177,8 @@ class Flood {
   const bool coloured_;
   BucketQueue queue_;
   std::vector<Voxel> voxels_;
-  std::vector<std::uint32_t> owner_;
-  std::vector<std::uint32_t> queued_by_;  // the patch of the voxel's nearest claim
-  std::vector<float> best_;               // its distance
+  std::vector<Claim> claims_;
+  std::vector<std::uint32_t> owner_;  // per voxel, its patch once the flood is done
   std::vector<Patch> patches_;
   std::vector<PatchSums> sums_;
 };
