@@ -24,12 +24,10 @@ struct Voxel {
   Eigen::Vector3f normal;
 };
 
-// A voxel in the flood: its patch once settled, and its nearest claim so far
-// (the patch and its distance), side by side: a neighbour is checked with one
-// memory access.
-struct alignas(16) Claim {
+// A voxel in the flood: its patch once settled, and the distance of its
+// nearest claim so far, side by side: a neighbour is checked with one memory access.
+struct alignas(8) Claim {
   std::uint32_t owner = kNone;
-  std::uint32_t claimant = kNone;
   float distance = kUnreached;
 };
 
@@ -148,8 +146,8 @@ class Flood {
   }
 
   // Voxel u joins patch k (its first and nearest claim); its free neighbours
-  // that k admits are queued at their distance to k as it now stands (once
-  // per patch: measured when the patch first reaches them).
+  // that k admits are queued at their distance to k as it now stands, if
+  // nearer than their nearest claim so far.
   void settle(std::uint32_t u, std::uint32_t k) {
     if (claims_[u].owner != kNone) return;
     claims_[u].owner = k;
@@ -157,11 +155,10 @@ class Flood {
     const Patch& patch = patches_[k];
     for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
       Claim& claim = claims_[*w];
-      if (claim.owner != kNone || claim.claimant == k) continue;
+      if (claim.owner != kNone) continue;
       const float d = admitted_distance(*w, patch);
       if (!(d < claim.distance)) continue;
       claim.distance = d;
-      claim.claimant = k;
       queue_.push(d, *w, k);
     }
   }
