@@ -123,25 +123,10 @@ std::vector<int> parse_scenes(const std::string& text) {
   return scenes;
 }
 
-// p1 / p2: config/p1.yaml / p2.yaml (the paper's Table II values if the file is missing);
-// anything else: a YAML file read with load_config.
+// A preset's name (p1, p2, paper, objects, robot: config/*.yaml, built in) or a YAML file.
 lccp::SceneConfig resolve_config(const std::string& name, std::string& source) {
-  if (name == "p1" || name == "p2" || name == "P1" || name == "P2") {
-    const bool p1 = name == "p1" || name == "P1";
-    const fs::path file = fs::path(LCCP_CONFIG_DIR) / (p1 ? "p1.yaml" : "p2.yaml");
-    if (fs::exists(file)) {
-      source = file.string();
-      return lccp::load_config(file);
-    }
-    source = std::string("built-in Table II ") + (p1 ? "P1" : "P2") + " (" + file.string() + " not found)";
-    lccp::SceneConfig config;
-    config.objects.voxels.voxel_size_m = p1 ? 0.005f : 0.0075f;
-    config.objects.supervoxels.seed_size_m = p1 ? 0.02f : 0.06f;
-    config.objects.filter.n_filter_supervoxels = p1 ? 3 : 1;
-    return config;
-  }
   source = name;
-  return lccp::load_config(name);
+  return lccp::load_preset_or_file(name);
 }
 
 fs::path default_mosd_dir() {
@@ -533,7 +518,7 @@ int main(int argc, char** argv) {
   CloudChange change;
   app.add_option("--mosd", mosd_dir, "directory holding test0.pcd .. test64.pcd ($LCCP_MOSD_DIR)")
       ->capture_default_str();
-  app.add_option("--config", config_name, "p1, p2 (config/p1.yaml, p2.yaml) or a YAML file")->capture_default_str();
+  app.add_option("--config", config_name, "a preset (p1, p2, paper, objects, robot) or a YAML file")->capture_default_str();
   app.add_option("--set", settings, "key=value override applied after --config (repeatable)");
   app.add_option("--scenes", scenes_text, "scene indices: N, A-B or a comma list, within 0-64")
       ->capture_default_str();
