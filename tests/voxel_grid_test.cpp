@@ -432,6 +432,10 @@ TEST(VoxelGridBinning, AutomaticDependsOnTheViewNotOnOrganisation) {
   PointCloud near_edge = flat;
   near_edge.points[3] = Eigen::Vector3f(1.66f, -1.66f, 1);
   EXPECT_EQ(binning_used(near_edge, Binning::automatic), Binning::camera);
+  // PCL's rule (config/paper.yaml): the camera transform for organized clouds in front of the sensor only.
+  EXPECT_EQ(binning_used(organized, Binning::organized), Binning::camera);
+  EXPECT_EQ(binning_used(flat, Binning::organized), Binning::euclidean);
+  EXPECT_EQ(binning_used(behind, Binning::organized), Binning::euclidean);
 }
 
 // A camera's frame, organized or as its finite points only (what numpy and

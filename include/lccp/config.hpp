@@ -12,6 +12,7 @@ enum class Binning {
   automatic,  // camera if every point lies in a camera's view from the origin (organized or not), euclidean otherwise
   euclidean,  // cubes of voxel_size_m in metres (the paper)
   camera,     // cells of voxel_size_m in (x/z, y/z, ln z): size grows with depth (PCL)
+  organized,  // PCL's rule: camera for an organized cloud in front of the sensor, euclidean otherwise
 };
 
 struct VoxelConfig {

@@ -82,6 +82,29 @@ bool in_view(const Eigen::Vector3f& p, float slope) {
   return p.z() > 0.0f && std::abs(p.x()) <= slope * p.z() && std::abs(p.y()) <= slope * p.z();
 }
 
+// The binning to try first, how wide a view the camera transform takes (tan of
+// half the field of view), and whether a point outside it means cubes (else
+// an error). Automatic binning tries the camera transform on any cloud (it
+// needs no image grid) and falls back to cubes if a point lies outside a
+// camera's view; `organized` is PCL's rule, the camera transform for organized
+// clouds in front of the sensor; asked for, the camera transform needs only z > 0.
+struct BinningPlan {
+  Binning first;
+  float slope;
+  bool falls_back;
+};
+
+BinningPlan plan_binning(const CloudView& cloud, Binning requested) {
+  constexpr float kAnySlope = std::numeric_limits<float>::infinity();
+  switch (requested) {
+    case Binning::automatic: return {Binning::camera, kViewSlope, true};
+    case Binning::organized: return {cloud.organized() ? Binning::camera : Binning::euclidean, kAnySlope, true};
+    case Binning::camera: return {Binning::camera, kAnySlope, false};
+    case Binning::euclidean: break;
+  }
+  return {Binning::euclidean, kAnySlope, false};
+}
+
 // Cells of every point (kInvalidCell where non-finite or skipped) and their
 // bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest
 // tells. With camera binning, a point outside the view (`slope`) gets no cell; bounds.outside_view tells.
@@ -279,18 +302,15 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
                    const std::vector<std::uint8_t>& skip) {
   check_limit(cloud.size() <= limits.max_points, "the cloud has " + std::to_string(cloud.size()) + " points",
               "max_points", limits.max_points);
-  // Automatic binning tries the camera transform (organized or not: it needs
-  // no image grid) and falls back to cubes if a point lies outside a camera's
-  // view; asked for, the camera transform needs only z > 0.
-  const bool automatic = config.binning == Binning::automatic;
-  Binning binning = automatic ? Binning::camera : config.binning;
-  const float slope = automatic ? kViewSlope : std::numeric_limits<float>::infinity();
+  const BinningPlan plan = plan_binning(cloud, config.binning);
+  Binning binning = plan.first;
+  const float slope = plan.slope;
   std::vector<Cell> cells;
   CellBounds bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, slope, limits.max_coordinate_m, cells);
   check_limit(bounds.farthest <= limits.max_coordinate_m,
               "a point lies " + format_number(bounds.farthest) + " m from the origin along an axis",
               "max_coordinate_m", limits.max_coordinate_m);
-  if (bounds.outside_view && !automatic) {
+  if (bounds.outside_view && !plan.falls_back) {
     throw Error("camera binning needs every point at z > 0; use binning: euclidean");
   }
   if (bounds.outside_view) {

@@ -78,7 +78,8 @@ Binning parse_binning(std::string_view key, const std::string& text) {
   if (text == "auto") return Binning::automatic;
   if (text == "euclidean") return Binning::euclidean;
   if (text == "camera") return Binning::camera;
-  throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not auto, euclidean or camera");
+  if (text == "organized") return Binning::organized;
+  throw Error("config key '" + std::string(key) + "': '" + printable(text) + "' is not auto, euclidean, camera or organized");
 }
 
 Growth parse_growth(std::string_view key, const std::string& text) {
@@ -97,6 +98,7 @@ std::string show(Binning binning) {
   switch (binning) {
     case Binning::euclidean: return "euclidean";
     case Binning::camera: return "camera";
+    case Binning::organized: return "organized";
     case Binning::automatic: break;
   }
   return "auto";
@@ -152,7 +154,7 @@ std::vector<Key> scene_keys() {
 std::vector<Key> method_keys() {
   return {
       float_key("voxel_size_m", [](auto& c) -> auto& { return c.voxels.voxel_size_m; }, "voxel size v (metres)"),
-      Key{"binning", "voxel cells: auto (camera if every point is in a camera's view from the origin), euclidean or camera",
+      Key{"binning", "voxel cells: auto (camera if every point is in a camera's view from the origin), euclidean, camera or organized (PCL's: camera if organized)",
           [](LccpConfig& c, const std::string& t) { c.voxels.binning = parse_binning("binning", t); },
           [](const LccpConfig& c) { return show(c.voxels.binning); }},
       bool_key("crease_preserving_normals", [](auto& c) -> auto& { return c.normals.crease_preserving; },
