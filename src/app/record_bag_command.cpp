@@ -32,7 +32,7 @@ Subcommand add_record_bag_command(CLI::App& cli) {
   auto options = std::make_shared<RecordBagCommandOptions>();
   CLI::App* command = cli.add_subcommand(
       "record-bag", "write a recording's or device's depth frames to a rosbag: 16UC1 /depth/image_raw and "
-                    "/depth/camera_info, stamped with the frames' timestamps; lccp replay gives the same labels");
+                    "/depth/camera_info, stamped from the time of writing plus each frame's offset from the first; lccp replay gives the same labels");
   command->add_option("source", options->source, "an .oni recording or a device URI")->required();
   command->add_option("-o,--output", options->output, "the .bag file to write")->required();
   command->add_option("--frames", options->frames, "stop after N frames (default: all; a device: until Ctrl-C)")

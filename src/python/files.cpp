@@ -73,7 +73,7 @@ fixed colour per label, black for 0.
 
 labels: (H, W) integer labels, or any shape with points (H, W, 3) giving the
     image's shape. objects: optional per-point object ids (Frame.objects):
-    each object gets its hue and its parts shades of it.
+    each object gets its hue and each part a hue of its own near it.
 The file appears only when complete. Raises ValueError for an unorganized
 cloud or mismatched sizes.
 )doc");

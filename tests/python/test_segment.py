@@ -31,6 +31,17 @@ def test_organized_cloud_keeps_its_shape(mosd_cloud, mosd_labels):
     assert (flat[finite] > 0).all() and (flat[~finite] == 0).all()
 
 
+def test_finite_points_alone_get_the_organized_labels(mosd_cloud, mosd_labels):
+    # What numpy and Open3D users pass: a depth frame's finite points as (N, 3).
+    # A camera's cloud is binned in camera cells organized or not, so it is the
+    # same segmentation.
+    points = mosd_cloud["points"].reshape(-1, 3)
+    finite = np.isfinite(points).all(axis=-1)
+    flat = lccp_stream.segment(np.ascontiguousarray(points[finite]),
+                               colors=np.ascontiguousarray(mosd_cloud["colors"].reshape(-1, 3)[finite]))
+    np.testing.assert_array_equal(flat, mosd_labels.reshape(-1)[finite])
+
+
 def test_float64_and_packed_colors_give_the_same_labels(mosd_cloud, mosd_labels):
     rgb = mosd_cloud["colors"].astype(np.uint32)
     packed = rgb[..., 0] << 16 | rgb[..., 1] << 8 | rgb[..., 2]
