@@ -71,7 +71,9 @@ class BucketQueue {
   void push(float distance, std::uint32_t voxel, std::uint32_t patch) {
     // An entry nearer than the bucket being popped joins that bucket: the
     // flood never goes back (a voxel's distance is to a patch, not along a path).
-    const auto b = std::clamp(static_cast<std::size_t>(distance * scale_), current_, kBuckets - 1);
+    // Rounding can make 1 - |n1.n2| a hair below 0: such a distance is 0.
+    const float bucket = std::min(std::max(distance, 0.0f) * scale_, static_cast<float>(kBuckets - 1));
+    const auto b = std::max(static_cast<std::size_t>(bucket), current_);
     buckets_[b].push_back(std::uint64_t{voxel} << 32 | patch);
     highest_ = std::max(highest_, b);
   }
