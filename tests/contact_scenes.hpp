@@ -201,7 +201,10 @@ inline ContactScene shuffled(const ContactScene& scene, std::uint64_t seed) {
   std::shuffle(finite.begin(), finite.end(), std::mt19937_64(seed));
   ContactScene out;
   out.camera_from_world = scene.camera_from_world;
-  for (const std::size_t i : finite) out.cloud.points.push_back(scene.cloud.points[i]), out.truth.push_back(scene.truth[i]);
+  for (const std::size_t i : finite) {
+    out.cloud.points.push_back(scene.cloud.points[i]);
+    out.truth.push_back(scene.truth[i]);
+  }
   out.cloud.width = static_cast<std::uint32_t>(finite.size());
   out.cloud.height = 1;
   return out;
@@ -211,8 +214,8 @@ inline ContactScene shuffled(const ContactScene& scene, std::uint64_t seed) {
 
 inline ContactScene contact_scene(const ContactLayout& layout, const ContactView& view) {
   const double el = deg2rad(view.elevation_deg), az = deg2rad(view.azimuth_deg);
-  const Eigen::Vector3d eye = layout.target + view.distance_m * Eigen::Vector3d(std::cos(az) * std::cos(el),
-                                                                                std::sin(az) * std::cos(el), std::sin(el));
+  const Eigen::Vector3d toward_eye(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+  const Eigen::Vector3d eye = layout.target + view.distance_m * toward_eye;
   const Pose pose = look_at(eye, layout.target);
   const PinholeCamera cam;
   const synthetic::detail::NormalDeviates normal;
