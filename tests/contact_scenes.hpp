@@ -1,13 +1,18 @@
 #pragma once
-// One object resting on a plane, where the object meets the support: a box, a
-// dome (a half sphere) or an upside-down bowl (a spherical cap whose rim meets
-// the plane at less than 90 deg), ray cast by a Kinect-class camera (640 x 480,
-// fx = fy = 525 px) looking down at it. Organized, or unorganized (the same
-// finite points, shuffled); noise-free, or with the Kinect v1 depth model of
-// src/synthetic/kinect_model.hpp (axial noise, disparity quantization, no
-// return beyond 80 deg incidence, random dropouts; the projector's shadow is
-// left out). Ground truth in mOSD's convention: 1 the plane, 10 the object.
-// World frame: z up, the plane z = 0; the object stands at the origin.
+// Objects resting on a plane, where they meet the support and each other, ray
+// cast by a Kinect-class camera (640 x 480, fx = fy = 525 px) looking down at
+// them. Organized, or unorganized (the same finite points, shuffled);
+// noise-free, or with the Kinect v1 depth model of src/synthetic/kinect_model.hpp
+// (axial noise, disparity quantization, no return beyond 80 deg incidence,
+// random dropouts; the projector's shadow is left out). Ground truth in mOSD's
+// convention: 1 the plane, 10, 20, ... the objects (n * 10 + k for part k of
+// object n, as mOSD labels a mug's handle).
+// World frame: z up, the plane z = 0.
+//
+// One object (ContactObject: a box, a dome or an upside-down bowl, standing at
+// the origin) is the layout of one solid (contact_layout); scenes of several
+// objects (contact_clutter.hpp) are layouts of several solids. Both take the
+// one ray-casting path of contact_scene(layout, view).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -56,11 +61,54 @@ inline ContactObject contact_cap(double radius, double height, const std::string
   return o;
 }
 
+// One rigid solid, in its own frame, placed in the world by p -> rotation p + position.
+struct ContactSolid {
+  enum class Shape {
+    box,       // [lo, hi]
+    cap,       // the part above z = 0 of the sphere of radius_m about (0, 0, height_m - radius_m)
+    cylinder,  // radius_m about the z axis, from z = 0 to height_m
+    cup,       // that cylinder minus the open-topped cavity of inner_radius_m above z = bottom_m
+    tube,      // radius_m around centre_line (ray_cast.hpp's intersect_tube)
+  } shape = Shape::box;
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  double radius_m = 0, height_m = 0, inner_radius_m = 0, bottom_m = 0;
+  std::vector<Eigen::Vector3d> centre_line;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::uint32_t label = kContactObjectLabel;
+};
+
+// What the camera sees: the solids on the plane, and the point it looks at (the
+// plane is a square centred under it).
+struct ContactLayout {
+  std::string name;
+  std::vector<ContactSolid> solids;
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+};
+
+// One object at the origin, labelled kContactObjectLabel; the camera looks at a
+// third of its height above its footprint centre.
+inline ContactLayout contact_layout(const ContactObject& object) {
+  ContactSolid solid;
+  double height = object.cap_height_m;
+  if (object.shape == ContactObject::Shape::box) {
+    height = object.box_size.z();
+    solid.lo = {-object.box_size.x() / 2, -object.box_size.y() / 2, 0};
+    solid.hi = {object.box_size.x() / 2, object.box_size.y() / 2, height};
+    solid.rotation = Eigen::AngleAxisd(deg2rad(object.yaw_deg), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  } else {
+    solid.shape = ContactSolid::Shape::cap;
+    solid.radius_m = object.sphere_radius_m;
+    solid.height_m = object.cap_height_m;
+  }
+  return {object.name, {solid}, Eigen::Vector3d(0, 0, height / 3)};
+}
+
 struct ContactView {
-  double distance_m = 0.9;     // eye to the object's footprint centre
+  double distance_m = 0.9;     // eye to the layout's target
   double elevation_deg = 45;   // above the plane
-  double azimuth_deg = -70;    // direction from the object to the eye, from world +x
-  double plane_side_m = 0.6;   // the plane: a square centred under the object
+  double azimuth_deg = -70;    // direction from the target to the eye, from world +x
+  double plane_side_m = 0.6;   // the plane: a square centred under the target
   bool organized = true;
   bool noisy = false;
   std::uint64_t seed = 1;      // noise and shuffle
@@ -68,7 +116,7 @@ struct ContactView {
 
 struct ContactScene {
   PointCloud cloud;
-  Labels truth;  // per point: 0 no return, kContactPlaneLabel, kContactObjectLabel
+  Labels truth;  // per point: 0 no return, kContactPlaneLabel, or the label of the solid seen
   Pose camera_from_world;
 };
 
@@ -77,12 +125,12 @@ namespace detail {
 using synthetic::detail::Hit;
 using synthetic::detail::Ray;
 
-inline Hit hit_plane(const Ray& ray, double half_side) {
+inline Hit hit_plane(const Ray& ray, const Eigen::Vector2d& centre, double half_side) {
   Hit hit;
   if (ray.direction.z() >= 0) return hit;
   const double t = -ray.origin.z() / ray.direction.z();
   const Eigen::Vector3d p = ray.origin + t * ray.direction;
-  if (std::abs(p.x()) <= half_side && std::abs(p.y()) <= half_side) hit.t = t, hit.normal = Eigen::Vector3d::UnitZ();
+  if ((p.head<2>() - centre).cwiseAbs().maxCoeff() <= half_side) hit.t = t, hit.normal = Eigen::Vector3d::UnitZ();
   return hit;
 }
 
@@ -99,14 +147,39 @@ inline Hit hit_cap(const Ray& ray, double radius, double height) {
   return hit;
 }
 
-inline Hit hit_object(const Ray& world_ray, const ContactObject& o) {
-  if (o.shape == ContactObject::Shape::cap) return hit_cap(world_ray, o.sphere_radius_m, o.cap_height_m);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(deg2rad(o.yaw_deg), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Ray local{R.transpose() * world_ray.origin, R.transpose() * world_ray.direction};
-  const Eigen::Vector3d half(o.box_size.x() / 2, o.box_size.y() / 2, o.box_size.z());
-  Hit hit = synthetic::detail::intersect_box(local, {-half.x(), -half.y(), 0}, half);
-  hit.normal = R * hit.normal;
+// The first hit of a world ray with a solid: the ray in the solid's frame (a
+// rotation keeps the ray parameter, the depth), the normal back in the world's.
+inline Hit hit_solid(const Ray& world_ray, const ContactSolid& s) {
+  namespace k = synthetic::detail;
+  const Ray ray{s.rotation.transpose() * (world_ray.origin - s.position), s.rotation.transpose() * world_ray.direction};
+  Hit hit;
+  switch (s.shape) {
+    case ContactSolid::Shape::box: hit = k::intersect_box(ray, s.lo, s.hi); break;
+    case ContactSolid::Shape::cap: hit = hit_cap(ray, s.radius_m, s.height_m); break;
+    case ContactSolid::Shape::cylinder: hit = k::intersect_cylinder(ray, s.radius_m, s.height_m); break;
+    case ContactSolid::Shape::cup:
+      hit = k::intersect_cup(ray, s.radius_m, s.inner_radius_m, s.height_m, s.bottom_m);
+      break;
+    case ContactSolid::Shape::tube: hit = k::intersect_tube(ray, s.centre_line, s.radius_m); break;
+  }
+  hit.normal = s.rotation * hit.normal;
   return hit;
+}
+
+// The nearest hit of a ray with the plane and the solids, and its label (0: none).
+struct LabelledHit {
+  Hit hit;
+  std::uint32_t label = 0;
+};
+
+inline LabelledHit first_hit(const Ray& ray, const ContactLayout& layout, double plane_side_m) {
+  LabelledHit first{hit_plane(ray, layout.target.head<2>(), plane_side_m / 2), kContactPlaneLabel};
+  for (const ContactSolid& solid : layout.solids) {
+    const Hit hit = hit_solid(ray, solid);
+    if (hit.t < first.hit.t) first = {hit, solid.label};
+  }
+  if (!(first.hit.t < synthetic::detail::kNoHit)) first.label = 0;
+  return first;
 }
 
 // The Kinect v1 measurement of true depth z on a surface hit at `cos2` =
@@ -119,15 +192,31 @@ inline double measure_depth(double z, double cos2, const synthetic::detail::Pixe
   return k::quantize_depth_m(z + k::axial_noise_sigma_m(z) * noise.gaussian);
 }
 
+// The finite points of an organized scene, shuffled: an unorganized cloud.
+inline ContactScene shuffled(const ContactScene& scene, std::uint64_t seed) {
+  std::vector<std::size_t> finite;
+  for (std::size_t i = 0; i < scene.truth.size(); ++i) {
+    if (scene.truth[i] != 0) finite.push_back(i);
+  }
+  std::shuffle(finite.begin(), finite.end(), std::mt19937_64(seed));
+  ContactScene out;
+  out.camera_from_world = scene.camera_from_world;
+  for (const std::size_t i : finite) {
+    out.cloud.points.push_back(scene.cloud.points[i]);
+    out.truth.push_back(scene.truth[i]);
+  }
+  out.cloud.width = static_cast<std::uint32_t>(finite.size());
+  out.cloud.height = 1;
+  return out;
+}
+
 }  // namespace detail
 
-inline ContactScene contact_scene(const ContactObject& object, const ContactView& view) {
+inline ContactScene contact_scene(const ContactLayout& layout, const ContactView& view) {
   const double el = deg2rad(view.elevation_deg), az = deg2rad(view.azimuth_deg);
-  const double height = object.shape == ContactObject::Shape::box ? object.box_size.z() : object.cap_height_m;
-  const Eigen::Vector3d target(0, 0, height / 3);
-  const Eigen::Vector3d eye =
-      target + view.distance_m * Eigen::Vector3d(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
-  const Pose pose = look_at(eye, target);
+  const Eigen::Vector3d toward_eye(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+  const Eigen::Vector3d eye = layout.target + view.distance_m * toward_eye;
+  const Pose pose = look_at(eye, layout.target);
   const PinholeCamera cam;
   const synthetic::detail::NormalDeviates normal;
   const std::uint64_t key = synthetic::detail::frame_key(view.seed, 0);
@@ -139,33 +228,23 @@ inline ContactScene contact_scene(const ContactObject& object, const ContactView
     for (int col = 0; col < cam.width; ++col) {
       const Eigen::Vector3d d_cam((col - cam.cx) / cam.focal_px, (row - cam.cy) / cam.focal_px, 1.0);
       const detail::Ray ray{eye, pose.R.transpose() * d_cam};  // t = depth along the optical axis
-      const detail::Hit on_plane = detail::hit_plane(ray, view.plane_side_m / 2);
-      const detail::Hit on_object = detail::hit_object(ray, object);
-      const bool object_first = on_object.t < on_plane.t;
-      const detail::Hit& hit = object_first ? on_object : on_plane;
-      double z = hit.t;
-      if (z < synthetic::detail::kNoHit && view.noisy) {
-        const double c = ray.direction.normalized().dot(hit.normal);
+      const detail::LabelledHit first = detail::first_hit(ray, layout, view.plane_side_m);
+      double z = first.hit.t;
+      if (first.label != 0 && view.noisy) {
+        const double c = ray.direction.normalized().dot(first.hit.normal);
         const std::uint64_t pixel = std::uint64_t(row) * std::uint64_t(cam.width) + std::uint64_t(col);
         z = detail::measure_depth(z, c * c, synthetic::detail::pixel_noise(key, pixel, normal));
       }
-      const bool seen = z < synthetic::detail::kNoHit && std::isfinite(z);
+      const bool seen = first.label != 0 && std::isfinite(z);
       scene.cloud.points.push_back(seen ? Eigen::Vector3f((z * d_cam).cast<float>()) : Eigen::Vector3f::Constant(kNaN));
-      scene.truth.push_back(!seen ? 0 : object_first ? kContactObjectLabel : kContactPlaneLabel);
+      scene.truth.push_back(seen ? first.label : 0);
     }
   }
-  if (view.organized) return scene;
-  std::vector<std::size_t> finite;
-  for (std::size_t i = 0; i < scene.truth.size(); ++i) {
-    if (scene.truth[i] != 0) finite.push_back(i);
-  }
-  std::shuffle(finite.begin(), finite.end(), std::mt19937_64(view.seed));
-  ContactScene out;
-  out.camera_from_world = pose;
-  for (const std::size_t i : finite) out.cloud.points.push_back(scene.cloud.points[i]), out.truth.push_back(scene.truth[i]);
-  out.cloud.width = static_cast<std::uint32_t>(finite.size());
-  out.cloud.height = 1;
-  return out;
+  return view.organized ? scene : detail::shuffled(scene, view.seed);
+}
+
+inline ContactScene contact_scene(const ContactObject& object, const ContactView& view) {
+  return contact_scene(contact_layout(object), view);
 }
 
 // The battery: boxes from 5 cm wide to 3x taller than wide, domes, and
