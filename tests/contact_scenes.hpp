@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -85,6 +86,10 @@ struct ContactLayout {
   std::vector<ContactSolid> solids;
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
 };
+
+// GoogleTest prints a parameter through these: by name, not as bytes.
+inline void PrintTo(const ContactObject& object, std::ostream* os) { *os << object.name; }
+inline void PrintTo(const ContactLayout& layout, std::ostream* os) { *os << layout.name; }
 
 // One object at the origin, labelled kContactObjectLabel; the camera looks at a
 // third of its height above its footprint centre.
