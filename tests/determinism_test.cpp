@@ -1,5 +1,5 @@
 // Whole-pipeline tests: every stage gives bitwise identical results with 1, 2 and 4
-// threads; the segmentation labels every finite point densely; LCCP separates what the
+// threads, with either supervoxel growth, on real and synthetic scenes; the segmentation labels every finite point densely; LCCP separates what the
 // paper says it separates; and the object scores on real mOSD scenes stay above a floor.
 #include <algorithm>
 #include <cstdint>
@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -45,6 +46,23 @@ const LabelledCloud& scene(const std::string& name) {
   }
   return *slot;
 }
+
+// A scene by name: an mOSD frame, or "box_on_table", a box on a table rendered
+// by the synthetic camera (test_clouds.hpp).
+const PointCloud& cloud_of(const std::string& name) {
+  if (name != "box_on_table") return scene(name).cloud;
+  static const PointCloud box = test::render(test::box_on_table().rects).cloud;
+  return box;
+}
+
+// The default config with the given supervoxel growth.
+LccpConfig with_growth(Growth growth) {
+  LccpConfig config;
+  config.supervoxels.growth = growth;
+  return config;
+}
+
+const char* growth_name(Growth growth) { return growth == Growth::flood ? "flood" : "vccs"; }
 
 // Runs f with at most n threads: the global limit plus an arena of exactly n slots (so 4
 // threads are used even when the machine reports fewer cores).
@@ -141,42 +159,48 @@ void expect_identical(const StageOutputs& ref, const StageOutputs& got) {
   EXPECT_EQ(ref.result.segment_count, got.result.segment_count);
 }
 
-// The one-thread result of a scene, computed once.
-const StageOutputs& reference(const std::string& name) {
+// The one-thread result of a scene with a growth, computed once.
+const StageOutputs& reference(const std::string& name, Growth growth) {
   static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<StageOutputs>> cache;
-  const PointCloud& cloud = scene(name).cloud;
+  static std::map<std::pair<std::string, Growth>, std::unique_ptr<StageOutputs>> cache;
+  const PointCloud& cloud = cloud_of(name);
   std::lock_guard lock(mutex);
-  auto& slot = cache[name];
-  if (!slot) slot = std::make_unique<StageOutputs>(with_threads(1, [&] { return run_stages(cloud, LccpConfig{}); }));
+  auto& slot = cache[{name, growth}];
+  if (!slot) slot = std::make_unique<StageOutputs>(with_threads(1, [&] { return run_stages(cloud, with_growth(growth)); }));
   return *slot;
 }
 
 // --- thread-count determinism ------------------------------------------------------------
 
-class Determinism : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
+// Stage 4 grows the supervoxels in parallel loops (the flood's voxel table and
+// boundary pass, VCCS's synchronous passes); the supervoxels, and the labels
+// after them, must not depend on how those loops are split.
+class Determinism : public ::testing::TestWithParam<std::tuple<std::string, Growth, int>> {};
 
 TEST_P(Determinism, EveryStageMatchesTheSingleThreadResultBitwise) {
   // Not a structured binding: clang 14 cannot capture one in a lambda (P1091 is in clang 16).
   const std::string& name = std::get<0>(GetParam());
-  const int threads = std::get<1>(GetParam());
-  const StageOutputs& ref = reference(name);
+  const Growth growth = std::get<1>(GetParam());
+  const int threads = std::get<2>(GetParam());
+  const StageOutputs& ref = reference(name, growth);
   // Consistency of the reference itself with the pipeline's summary.
   EXPECT_EQ(ref.result.voxel_count, ref.grid.size());
   EXPECT_EQ(ref.result.supervoxel_count, ref.sv.size());
   EXPECT_EQ(ref.result.segment_count, ref.segment_count);
   // Run twice: a lucky schedule must not hide a race.
   for (int rep = 0; rep < 2; ++rep) {
-    SCOPED_TRACE(testing::Message() << name << ", " << threads << " threads, run " << rep);
-    const StageOutputs got = with_threads(threads, [&] { return run_stages(scene(name).cloud, LccpConfig{}); });
+    SCOPED_TRACE(testing::Message() << name << ", " << growth_name(growth) << ", " << threads << " threads, run " << rep);
+    const StageOutputs got = with_threads(threads, [&] { return run_stages(cloud_of(name), with_growth(growth)); });
     expect_identical(ref, got);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Threads, Determinism,
-                         ::testing::Combine(::testing::Values("mosd_test2", "mosd_test43"), ::testing::Values(1, 2, 4)),
+                         ::testing::Combine(::testing::Values("mosd_test2", "mosd_test43", "box_on_table"),
+                                            ::testing::Values(Growth::flood, Growth::vccs), ::testing::Values(1, 2, 4)),
                          [](const auto& info) {
-                           return std::get<0>(info.param) + "_" + std::to_string(std::get<1>(info.param)) + "threads";
+                           return std::get<0>(info.param) + "_" + growth_name(std::get<1>(info.param)) + "_" +
+                                  std::to_string(std::get<2>(info.param)) + "threads";
                          });
 
 // --- labels and scores on the real scenes ------------------------------------------------

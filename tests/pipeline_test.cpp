@@ -249,6 +249,42 @@ INSTANTIATE_TEST_SUITE_P(Pipeline, PipelineMatchesSegment,
                                   std::to_string(std::get<1>(info.param));
                          });
 
+// The flood growth (the default) through the stream: one real frame, 2K + 1
+// times, with K frames in flight on 2 threads. A tracker's first frame gives
+// object k id k and an identical frame keeps them (SegmentTracker), so every
+// copy's ids are byte for byte the labels LccpSegmenter::segment gives the frame.
+class PipelineFloodMatchesSegment : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(PipelineFloodMatchesSegment, RepeatedFrameLabelsEqualSegmentByteForByte) {
+  const unsigned frames_in_flight = GetParam();
+  SceneConfig config;
+  config.objects.supervoxels.growth = Growth::flood;
+  const SceneSegmenter flood(config);
+  const PointCloud& cloud = scene("mosd_test43");
+  const SegmentationResult alone = LccpSegmenter(config.objects).segment(cloud);
+  ASSERT_GT(alone.segment_count, 1u);
+  const std::size_t frame_count = 2 * frames_in_flight + 1;
+  std::vector<Frame> frames;
+  for (std::size_t i = 0; i < frame_count; ++i) frames.push_back(cloud_frame(i, cloud));
+  VectorSource source(std::move(frames));
+  std::vector<FrameResult> seen;
+  const PipelineStats stats = with_threads(2, [&] {
+    return Pipeline(flood, PipelineConfig{frames_in_flight}).run(source, [&](FrameResult& r) { seen.push_back(std::move(r)); }).stats;
+  });
+  EXPECT_EQ(stats.frames_completed, frame_count);
+  ASSERT_EQ(seen.size(), frame_count);
+  for (const FrameResult& r : seen) {
+    EXPECT_TRUE(r.error.empty()) << r.error;
+    EXPECT_TRUE(r.segmentation.labels == alone.labels) << "frame " << r.frame.index;
+    EXPECT_EQ(r.segmentation.voxel_count, alone.voxel_count);
+    EXPECT_EQ(r.segmentation.supervoxel_count, alone.supervoxel_count);
+    EXPECT_EQ(r.segmentation.segment_count, alone.segment_count);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Pipeline, PipelineFloodMatchesSegment, ::testing::Values(1u, 2u, 3u),
+                         [](const ::testing::TestParamInfo<unsigned>& info) { return "K" + std::to_string(info.param); });
+
 TEST(PipelineDepth, DepthFramesAreBackProjectedThenSegmented) {
   const std::vector<std::string> names = {"mosd_test2", "mosd_test60"};
   std::vector<Frame> frames;
