@@ -197,18 +197,10 @@ Input make_input(const Graph& graph, std::vector<Vec> xyz, const LccpConfig& con
 // BucketQueue::push (supervoxel_flood.cpp) turns distance * 1023 / (the largest
 // distance) into a bucket index. For two equal unit normals the normal term
 // 1 - |n1.n2| can round below 0 (|n1.n2| up to 2.4e-7 above 1 for a fifth of
-// all unit vectors); where the largest distance is under about 4e-4 w_n that
-// product is -1 or less, a float to unsigned conversion out of range:
-// undefined (UBSan's float-cast-overflow), and in practice the entry lands in
-// the last bucket, so a nearer patch loses the voxel
-// (FloodProperty.DISABLED_NearerPatchWinsWhenTheNormalTermRoundsBelowZero).
-// Until that is fixed, configs whose largest distance is under 2e-3 w_n are
-// left out; the random cases below reach it without this.
-bool can_misfile_a_negative_distance(const SupervoxelConfig& c) {
-  const float largest = c.normal_weight * (1.0f - std::cos(radians(c.max_normal_angle_deg))) +
-                        c.color_weight * std::sqrt(3.0f) + c.spatial_weight * 1.8f;
-  return largest > 0.0f && c.normal_weight * 1e-6f * 1023.0f > 0.5f * largest;
-}
+// all unit vectors); push files such a distance in bucket 0. The random cases
+// below draw configs whose largest distance is small enough for that to matter
+// (FloodProperty.NearerPatchWinsWhenTheNormalTermRoundsBelowZero is the
+// reproducer it was found with).
 
 // A weight validate() accepts: 0, below 1, up to 10, or up to 1e6.
 float random_weight(Rng& rng) {
@@ -220,14 +212,11 @@ float random_weight(Rng& rng) {
   }
 }
 
-// Random weights for config (its angle already set), drawn again while they
-// could hit the bucket conversion above.
+// Random weights for config (its angle already set).
 void random_weights(Rng& rng, SupervoxelConfig& c) {
-  do {
-    c.spatial_weight = random_weight(rng);
-    c.normal_weight = random_weight(rng);
-    c.color_weight = chance(rng, 0.5) ? 0.0f : random_weight(rng);
-  } while (can_misfile_a_negative_distance(c));
+  c.spatial_weight = random_weight(rng);
+  c.normal_weight = random_weight(rng);
+  c.color_weight = chance(rng, 0.5) ? 0.0f : random_weight(rng);
 }
 
 // A sensor constant: the default, the edge of its range, or anywhere in it.
@@ -704,7 +693,7 @@ TEST(FloodProperty, ComponentsWithinTheReachAreOneSupervoxelEach) {
   EXPECT_GT(split_when_wide, 50u);
 }
 
-// ---- a known bug -------------------------------------------------------------------
+// ---- a bug found by these tests -------------------------------------------------------------------
 
 // A unit normal near -z whose normal term against itself, 1 - |n . n / |n||,
 // rounds below 0 in float.
@@ -716,18 +705,17 @@ Vec normal_rounding_above_one() {
   return Vec::Zero();
 }
 
-// Disabled: fails until BucketQueue::push (supervoxel_flood.cpp) files a
-// negative distance in the bucket being popped, as its comment says it does.
-// Voxel x lies between seeds b (voxel 0, settled first) and a (voxel 1). b
-// claims x at the normal term of 0.3 deg, 1.4e-5 (bucket ~370). a claims it
+// Failed until BucketQueue::push (supervoxel_flood.cpp) filed a negative
+// distance in bucket 0 (34b1bb5). Voxel x lies between seeds b (voxel 0,
+// settled first) and a (voxel 1). b claims x at the normal term of 0.3 deg, 1.4e-5 (bucket ~370). a claims it
 // nearer: x's normal equals a's, so with w_s = 0 the distance is the normal
 // term alone, which rounds just below 0; times 1023 / 3.8e-5 (the largest
 // distance at max_normal_angle_deg 0.5) that is about -3, and converting it
-// to size_t is undefined (UBSan: float-cast-overflow), in practice the last
+// to size_t was undefined (UBSan: float-cast-overflow), in practice the last
 // bucket. So b's claim is popped first and wins x. a then grows the other way
 // (three voxels at -0.9 reach), so the refinement finds a's mean beyond x's
 // reach and x stays with b.
-TEST(FloodProperty, DISABLED_NearerPatchWinsWhenTheNormalTermRoundsBelowZero) {
+TEST(FloodProperty, NearerPatchWinsWhenTheNormalTermRoundsBelowZero) {
   const Vec n = normal_rounding_above_one();
   ASSERT_NE(n, Vec::Zero());
   const Vec tilted_b = Eigen::AngleAxisf(radians(0.3f), Vec::UnitY()) * n;
