@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 
 #include "cell_keys.hpp"
 #include "parallel.hpp"
@@ -25,6 +28,8 @@ using detail::PackedKeys;
 
 constexpr float kMaxCellCoordinate = 1 << 30;  // |cell| beyond this: refuse the cloud
 const Cell kInvalidCell = Cell::Constant(std::numeric_limits<int>::min());
+
+bool has_cell(const Cell& cell) { return cell.x() != kInvalidCell.x(); }
 
 struct CellBounds {
   std::array<int, 3> min{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
@@ -108,7 +113,7 @@ std::vector<std::uint64_t> sorted_point_keys(const std::vector<Cell>& cells, con
                                              const PackedKeys& packing, std::size_t finite_count) {
   constexpr std::size_t kBlock = std::size_t{1} << 14;
   const std::size_t blocks = (cells.size() + kBlock - 1) / kBlock;
-  const auto is_valid = [&](std::size_t i) { return cells[i].x() != kInvalidCell.x(); };
+  const auto is_valid = [&](std::size_t i) { return has_cell(cells[i]); };
   std::vector<std::size_t> first_slot(blocks + 1, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     for (std::size_t i = b * kBlock; i < std::min(cells.size(), (b + 1) * kBlock); ++i) first_slot[b + 1] += is_valid(i);
@@ -123,6 +128,139 @@ std::vector<std::uint64_t> sorted_point_keys(const std::vector<Cell>& cells, con
   });
   detail::radix_sort(values, packing);
   return values;
+}
+
+// A box with at most this many (x, y) rows of cells per finite point is
+// grouped by a counting sort over its rows (camera cells, table-top scenes);
+// wider boxes by the radix sort.
+constexpr std::uint64_t kRowsPerPointForCounting = 2;
+constexpr std::size_t kCountingChunkPoints = std::size_t{1} << 16;  // fewest points per share
+
+// Chunks of points for the counting sort: one per thread, each with its own
+// count per row (any split gives the same stable order).
+std::size_t counting_chunks(std::size_t points) {
+  const auto threads = static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+  return std::clamp<std::size_t>(points / kCountingChunkPoints, 1, threads);
+}
+
+// Finite points as packed (place along z, point index), stably sorted by
+// (x, y) row of cells (a counting sort: count per row and chunk, prefix sum in
+// (row, chunk) order, scatter). row_first[r] is where row r begins.
+std::unique_ptr<std::uint64_t[]> points_by_row(const std::vector<Cell>& cells, const CellKeys& keys,
+                                               const PackedKeys& packing, std::size_t finite_count,
+                                               std::vector<std::uint32_t>& row_first) {
+  const std::size_t rows = keys.extent(0) * keys.extent(1), chunks = counting_chunks(cells.size());
+  const auto chunk_range = [&](std::size_t c) {
+    return tbb::blocked_range<std::size_t>(cells.size() * c / chunks, cells.size() * (c + 1) / chunks);
+  };
+  std::vector<std::uint32_t> next(chunks * rows, 0);  // per chunk, per row
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::uint32_t* count = next.data() + c * rows;
+    const CellKeys own_keys = keys;  // a local copy: the stores below cannot alias it
+    const auto range = chunk_range(c);
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      if (has_cell(cells[i])) ++count[own_keys.row(cells[i])];
+    }
+  });
+  row_first.resize(rows + 1);
+  std::uint32_t running = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    row_first[r] = running;
+    for (std::size_t c = 0; c < chunks; ++c) running += std::exchange(next[c * rows + r], running);
+  }
+  row_first[rows] = running;
+  auto values = std::make_unique_for_overwrite<std::uint64_t[]>(finite_count);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::uint32_t* slot = next.data() + c * rows;
+    std::uint64_t* out = values.get();
+    const CellKeys own_keys = keys;  // local copies: the stores below cannot alias them
+    const PackedKeys own_packing = packing;
+    const auto range = chunk_range(c);
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      if (!has_cell(cells[i])) continue;
+      out[slot[own_keys.row(cells[i])]++] = own_packing.pack(own_keys.level(cells[i]), static_cast<std::uint32_t>(i));
+    }
+  });
+  return values;
+}
+
+// A row's points come nearly sorted (a camera cell's points mostly share one
+// depth cell): an insertion sort, or std::sort for a long row.
+void sort_row(std::uint64_t* first, std::uint64_t* last) {
+  constexpr std::ptrdiff_t kInsertionSortLength = 32;
+  if (last - first > kInsertionSortLength) {
+    std::sort(first, last);
+    return;
+  }
+  for (std::uint64_t* i = first + (first != last); i < last; ++i) {
+    const std::uint64_t value = *i;
+    std::uint64_t* j = i;
+    for (; j > first && *(j - 1) > value; --j) *j = *(j - 1);
+    *j = value;
+  }
+}
+
+// Runs of equal place along z in rows [first_row, last_row): each row's points
+// sorted by place along z (then index), their indices written to item, each
+// run's cell key and first position appended to run_keys and run_first.
+void group_rows(std::uint64_t* values, const std::vector<std::uint32_t>& row_first, std::size_t first_row,
+                std::size_t last_row, PackedKeys packing, std::uint64_t extent_z, std::uint32_t* item,
+                std::vector<std::uint64_t>& run_keys, std::vector<std::uint32_t>& run_first) {
+  for (std::size_t r = first_row; r < last_row; ++r) {
+    const std::uint32_t first = row_first[r], last = row_first[r + 1];
+    sort_row(values + first, values + last);
+    std::uint64_t previous = ~std::uint64_t{0};
+    for (std::uint32_t i = first; i < last; ++i) {
+      const std::uint64_t level = packing.key(values[i]);
+      if (level != previous) {
+        run_keys.push_back(r * extent_z + level);
+        run_first.push_back(i);
+        previous = level;
+      }
+      item[i] = packing.index(values[i]);
+    }
+  }
+}
+
+// The points grouped into voxels, in parallel over shares of the rows with
+// about equal numbers of points; the first share writes into the results,
+// the others' runs are appended to them.
+void group_voxels(std::uint64_t* values, const std::vector<std::uint32_t>& row_first, const PackedKeys& packing,
+                  std::uint64_t extent_z, std::vector<std::uint64_t>& run_keys, CompressedRows& members) {
+  const std::size_t n = row_first.back(), rows = row_first.size() - 1, shares = counting_chunks(n);
+  std::vector<std::size_t> share_row(shares + 1, rows);
+  for (std::size_t s = 0; s < shares; ++s) {
+    share_row[s] = std::lower_bound(row_first.begin(), row_first.end() - 1, n * s / shares) - row_first.begin();
+  }
+  members.items.resize(n);
+  run_keys.clear();
+  members.offsets.clear();
+  std::vector<std::vector<std::uint64_t>> keys(shares);
+  std::vector<std::vector<std::uint32_t>> firsts(shares);
+  tbb::parallel_for(std::size_t{0}, shares, [&](std::size_t s) {
+    group_rows(values, row_first, share_row[s], share_row[s + 1], packing, extent_z, members.items.data(),
+               s == 0 ? run_keys : keys[s], s == 0 ? members.offsets : firsts[s]);
+  });
+  for (std::size_t s = 1; s < shares; ++s) {
+    run_keys.insert(run_keys.end(), keys[s].begin(), keys[s].end());
+    members.offsets.insert(members.offsets.end(), firsts[s].begin(), firsts[s].end());
+  }
+  members.offsets.push_back(static_cast<std::uint32_t>(n));
+}
+
+// Finite points grouped into voxels: run_keys the voxels' cell keys,
+// ascending; members their points, in index order.
+void group_points(const std::vector<Cell>& cells, const CellKeys& keys, std::size_t finite_count,
+                  std::vector<std::uint64_t>& run_keys, CompressedRows& members) {
+  const PackedKeys packing = detail::packed_keys(keys, cells.size());
+  if (keys.extent(0) * keys.extent(1) > kRowsPerPointForCounting * finite_count) {
+    detail::group_runs(sorted_point_keys(cells, keys, packing, finite_count), packing, run_keys, members);
+    return;
+  }
+  const PackedKeys by_level{packing.index_bits, static_cast<int>(std::bit_width(keys.extent(2) - 1))};
+  std::vector<std::uint32_t> row_first;
+  const auto values = points_by_row(cells, keys, by_level, finite_count, row_first);
+  group_voxels(values.get(), row_first, by_level, keys.extent(2), run_keys, members);
 }
 
 Eigen::Vector3f unpack_rgb(std::uint32_t rgb) {
@@ -285,13 +423,12 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
   }
   if (bounds.count == 0) return no_voxels(cloud, binning);
   const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
-  const PackedKeys packing = detail::packed_keys(keys, cloud.size());
-  if (!keys.fits() || !packing.fits()) throw Error("the cloud spans too many voxels for its voxel size");
+  if (!keys.fits() || !detail::packed_keys(keys, cloud.size()).fits()) throw Error("the cloud spans too many voxels for its voxel size");
 
   VoxelGrid grid;
   grid.binning = binning;
   std::vector<std::uint64_t> voxel_keys;
-  detail::group_runs(sorted_point_keys(cells, keys, packing, bounds.count), packing, voxel_keys, grid.points);
+  group_points(cells, keys, bounds.count, voxel_keys, grid.points);
   check_limit(voxel_keys.size() <= limits.max_voxels, "the cloud fills " + std::to_string(voxel_keys.size()) + " voxels",
               "max_voxels", limits.max_voxels);
   compute_voxel_means(cloud, grid);
