@@ -58,8 +58,11 @@ struct CellBounds {
   }
 };
 
+[[noreturn]] void throw_too_far() { throw Error("the cloud spans too far for its voxel size"); }
+
+// Inlined (three calls a point): its throw is out of line.
 int floor_to_int(float x) {
-  if (!(std::abs(x) < kMaxCellCoordinate)) throw Error("the cloud spans too far for its voxel size");
+  if (!(std::abs(x) < kMaxCellCoordinate)) throw_too_far();
   const int truncated = static_cast<int>(x);
   return truncated - (x < static_cast<float>(truncated));
 }
