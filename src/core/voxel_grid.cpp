@@ -27,31 +27,26 @@ using detail::CellKeys;
 using detail::PackedKeys;
 
 constexpr float kMaxCellCoordinate = 1 << 30;  // |cell| beyond this: refuse the cloud
-const Cell kInvalidCell = Cell::Constant(std::numeric_limits<int>::min());
+constexpr int kNoCell = std::numeric_limits<int>::min();
+const Cell kInvalidCell = Cell::Constant(kNoCell);
 
-bool has_cell(const Cell& cell) { return cell.x() != kInvalidCell.x(); }
+bool has_cell(const Cell& cell) { return cell.x() != kNoCell; }
 
 struct CellBounds {
-  std::array<int, 3> min{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
-                         std::numeric_limits<int>::max()};
-  std::array<int, 3> max{std::numeric_limits<int>::min(), std::numeric_limits<int>::min(),
-                         std::numeric_limits<int>::min()};
+  Cell min = Cell::Constant(std::numeric_limits<int>::max());
+  Cell max = Cell::Constant(std::numeric_limits<int>::min());
   std::size_t count = 0;
   bool behind_sensor = false;  // a finite point at z <= 0 (camera binning impossible)
   float farthest = 0.0f;       // largest |coordinate| of a finite point
 
   void add(const Cell& c) {
-    for (int a = 0; a < 3; ++a) {
-      min[a] = std::min(min[a], c[a]);
-      max[a] = std::max(max[a], c[a]);
-    }
+    min = min.min(c);
+    max = max.max(c);
     ++count;
   }
   void join(const CellBounds& other) {
-    for (int a = 0; a < 3; ++a) {
-      min[a] = std::min(min[a], other.min[a]);
-      max[a] = std::max(max[a], other.max[a]);
-    }
+    min = min.min(other.min);
+    max = max.max(other.max);
     count += other.count;
     behind_sensor = behind_sensor || other.behind_sensor;
     farthest = std::max(farthest, other.farthest);
@@ -105,29 +100,58 @@ Cell cell_of(const Eigen::Vector3f& p, float inverse_size, Binning binning, Dept
               floor_to_int(p.z() * inverse_size));
 }
 
+// What compute_cells reads, as values: its loops keep them in registers.
+struct CellJob {
+  const Eigen::Vector3f* points;
+  const std::uint8_t* skip;  // null: none skipped
+  float inverse_size;
+  Binning binning;
+  float max_coordinate;
+};
+
+// The cells of points [begin, end) (kInvalidCell where non-finite or skipped,
+// beyond max_coordinate, or behind the sensor for camera cells), and their
+// bounds. The bounds are kept in scalars: GCC keeps Eigen arrays in memory.
+CellBounds cells_of_points(const CellJob job, std::size_t begin, std::size_t end, Cell* cells) {
+  DepthLevels levels(job.inverse_size);
+  CellBounds bounds;
+  std::array<int, 3> low = {bounds.min.x(), bounds.min.y(), bounds.min.z()};
+  std::array<int, 3> high = {bounds.max.x(), bounds.max.y(), bounds.max.z()};
+  float farthest = 0.0f;
+  for (std::size_t i = begin; i < end; ++i) {
+    const Eigen::Vector3f& p = job.points[i];
+    Cell cell = kInvalidCell;
+    if (is_finite(p) && !(job.skip && job.skip[i])) {
+      farthest = std::max(farthest, p.cwiseAbs().maxCoeff());
+      const bool behind = job.binning == Binning::camera && !(p.z() > 0.0f);
+      bounds.behind_sensor |= behind && farthest <= job.max_coordinate;
+      if (farthest <= job.max_coordinate && !behind) cell = cell_of(p, job.inverse_size, job.binning, levels);
+    }
+    cells[i] = cell;
+    if (!has_cell(cell)) continue;
+    for (int a = 0; a < 3; ++a) {
+      low[a] = std::min(low[a], cell[a]);
+      high[a] = std::max(high[a], cell[a]);
+    }
+    ++bounds.count;
+  }
+  bounds.min = Cell(low[0], low[1], low[2]);
+  bounds.max = Cell(high[0], high[1], high[2]);
+  bounds.farthest = farthest;
+  return bounds;
+}
+
 // Cells of every point (kInvalidCell where non-finite or skipped) and their
 // bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest tells.
 CellBounds compute_cells(const CloudView& cloud, const std::vector<std::uint8_t>& skip, float voxel_size,
                          Binning binning, float max_coordinate, std::vector<Cell>& cells) {
   cells.resize(cloud.size());
-  const float inverse_size = 1.0f / voxel_size;
+  const CellJob job{cloud.points.data(), skip.empty() ? nullptr : skip.data(), 1.0f / voxel_size, binning,
+                    max_coordinate};
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, cloud.size()), CellBounds{},
       [&](const auto& range, CellBounds bounds) {
-        DepthLevels levels(inverse_size);
-        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-          const Eigen::Vector3f& p = cloud.points[i];
-          cells[i] = kInvalidCell;
-          if (!is_finite(p) || (!skip.empty() && skip[i])) continue;
-          bounds.farthest = std::max(bounds.farthest, p.cwiseAbs().maxCoeff());
-          if (bounds.farthest > max_coordinate) continue;
-          if (binning == Binning::camera && !(p.z() > 0.0f)) {
-            bounds.behind_sensor = true;
-            continue;
-          }
-          cells[i] = cell_of(p, inverse_size, binning, levels);
-          bounds.add(cells[i]);
-        }
+        bounds.join(cells_of_points(job, range.begin(), range.end(), cells.data()));
         return bounds;
       },
       [](CellBounds a, const CellBounds& b) {
@@ -452,7 +476,7 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
     bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, limits.max_coordinate_m, cells);
   }
   if (bounds.count == 0) return no_voxels(cloud, binning);
-  const CellKeys keys(Cell(bounds.min[0], bounds.min[1], bounds.min[2]), Cell(bounds.max[0], bounds.max[1], bounds.max[2]));
+  const CellKeys keys(bounds.min, bounds.max);
   if (!keys.fits() || !detail::packed_keys(keys, cloud.size()).fits()) throw Error("the cloud spans too many voxels for its voxel size");
 
   VoxelGrid grid;
