@@ -408,13 +408,21 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
   detail::parallel_for_each_index(n, [&](std::size_t v) {
     std::uint32_t* out = slots.get() + v * kSlots;
     std::uint32_t count = 0;
-    const std::uint32_t z = rows.z_of(v);
+    const std::uint32_t z_low = rows.z_of(v) - 1;
+    const auto scan = [&](std::uint32_t first, std::uint32_t end) {
+      for (std::uint32_t u = first; u < end; ++u) {
+        out[count] = u;
+        count += rows.z_of(u) - z_low <= 2;  // |dz| <= 1, as unsigned
+      }
+    };
     for (std::uint64_t dx = 0; dx < 3; ++dx) {
       const std::uint64_t first_row = rows.row_of(v) + dx * extent_y - extent_y - 1;
-      const std::uint32_t end = rows.first_voxel_from(first_row + 3);
-      for (std::uint32_t u = rows.first_voxel_from(first_row); u < end; ++u) {
-        out[count] = u;
-        count += (rows.z_of(u) + 1 - z <= 2) & (u != v);  // |dz| <= 1, as unsigned
+      const std::uint32_t first = rows.first_voxel_from(first_row), end = rows.first_voxel_from(first_row + 3);
+      if (dx != 1) {
+        scan(first, end);
+      } else {  // v's own rows: all but v
+        scan(first, static_cast<std::uint32_t>(v));
+        scan(static_cast<std::uint32_t>(v) + 1, end);
       }
     }
     counts[v + 1] = count;
