@@ -61,14 +61,6 @@ std::optional<Eigen::Vector3d> eigenvector_of(const Eigen::Matrix3d& a, double l
 
 }  // namespace
 
-Moments moments_of(const Eigen::Vector3f& point) {
-  const Eigen::Vector3d c = point.cast<double>();
-  Moments m;
-  m << 1.0, c.x(), c.y(), c.z(), c.x() * c.x(), c.x() * c.y(), c.x() * c.z(), c.y() * c.y(), c.y() * c.z(),
-      c.z() * c.z();
-  return m;
-}
-
 Eigen::Matrix3d covariance_of(const Moments& m) {
   const Eigen::Vector3d mean = m.segment<3>(1) / m(0);
   Eigen::Matrix3d second;

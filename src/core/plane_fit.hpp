@@ -12,7 +12,23 @@ namespace lccp::detail {
 // (n, sx, sy, sz, sxx, sxy, sxz, syy, syz, szz).
 using Moments = Eigen::Matrix<double, 10, 1>;
 
-Moments moments_of(const Eigen::Vector3f& point);
+// Inline and element by element (Eigen's comma initializer is slow where the
+// two-ring sums call it, once a voxel).
+inline Moments moments_of(const Eigen::Vector3f& point) {
+  const Eigen::Vector3d c = point.cast<double>();
+  Moments m;
+  m(0) = 1.0;
+  m(1) = c.x();
+  m(2) = c.y();
+  m(3) = c.z();
+  m(4) = c.x() * c.x();
+  m(5) = c.x() * c.y();
+  m(6) = c.x() * c.z();
+  m(7) = c.y() * c.y();
+  m(8) = c.y() * c.z();
+  m(9) = c.z() * c.z();
+  return m;
+}
 Eigen::Matrix3d covariance_of(const Moments& m);
 
 // Unit eigenvector of the smallest eigenvalue of a symmetric positive
