@@ -188,13 +188,15 @@ std::vector<std::uint64_t> sorted_point_keys(const std::vector<Cell>& cells, con
 // grouped by a counting sort over its rows (camera cells, table-top scenes);
 // wider boxes by the radix sort.
 constexpr std::uint64_t kRowsPerPointForCounting = 2;
-constexpr std::size_t kCountingChunkPoints = std::size_t{1} << 16;  // fewest points per share
+constexpr std::size_t kChunkPoints = std::size_t{1} << 16;  // fewest points per chunk
+constexpr std::size_t kChunkVoxels = std::size_t{1} << 12;  // fewest voxels per chunk
 
-// Chunks of points for the counting sort: one per thread, each with its own
-// count per row (any split gives the same stable order).
-std::size_t counting_chunks(std::size_t points) {
+// Chunks of items for loops whose chunks each keep state of their own (counts
+// per row, lists): one per thread, each of at least min_items (any split
+// gives the same result).
+std::size_t thread_chunks(std::size_t items, std::size_t min_items) {
   const auto threads = static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
-  return std::clamp<std::size_t>(points / kCountingChunkPoints, 1, threads);
+  return std::clamp<std::size_t>(items / min_items, 1, threads);
 }
 
 // Finite points as packed (place along z, point index), stably sorted by
@@ -203,7 +205,7 @@ std::size_t counting_chunks(std::size_t points) {
 std::unique_ptr<std::uint64_t[]> points_by_row(const std::vector<Cell>& cells, const CellKeys& keys,
                                                const PackedKeys& packing, std::size_t finite_count,
                                                std::vector<std::uint32_t>& row_first) {
-  const std::size_t rows = keys.extent(0) * keys.extent(1), chunks = counting_chunks(cells.size());
+  const std::size_t rows = keys.extent(0) * keys.extent(1), chunks = thread_chunks(cells.size(), kChunkPoints);
   const auto chunk_range = [&](std::size_t c) {
     return tbb::blocked_range<std::size_t>(cells.size() * c / chunks, cells.size() * (c + 1) / chunks);
   };
@@ -281,7 +283,7 @@ void group_rows(std::uint64_t* values, const std::vector<std::uint32_t>& row_fir
 // the others' runs are appended to them.
 void group_voxels(std::uint64_t* values, const std::vector<std::uint32_t>& row_first, const PackedKeys& packing,
                   std::uint64_t extent_z, std::vector<std::uint64_t>& run_keys, CompressedRows& members) {
-  const std::size_t n = row_first.back(), rows = row_first.size() - 1, shares = counting_chunks(n);
+  const std::size_t n = row_first.back(), rows = row_first.size() - 1, shares = thread_chunks(n, kChunkPoints);
   std::vector<std::size_t> share_row(shares + 1, rows);
   for (std::size_t s = 0; s < shares; ++s) {
     share_row[s] = std::lower_bound(row_first.begin(), row_first.end() - 1, n * s / shares) - row_first.begin();
@@ -395,46 +397,57 @@ class CellRows {
 };
 
 // 26-neighbourhood: the neighbours of a voxel in row (x, y) lie in the rows
-// (x + dx, y - 1 .. y + 1), consecutive row ids, at z - 1 .. z + 1. Written
-// unconditionally into a voxel's 27 slots (26 neighbours and a spare that a
-// non-match may overwrite), kept where they match.
+// (x + dx, y - 1 .. y + 1), consecutive row ids, at z - 1 .. z + 1. Each
+// candidate is written unconditionally at the end of the chunk's list and
+// kept (the end moves on) where it matches; v's own rows are scanned on
+// either side of v.
+std::uint32_t scan_neighbors(const CellRows& rows, std::uint64_t extent_y, std::size_t v, std::uint32_t* out) {
+  std::uint32_t count = 0;
+  const std::uint32_t z_low = rows.z_of(v) - 1;
+  const auto scan = [&](std::uint32_t first, std::uint32_t end) {
+    for (std::uint32_t u = first; u < end; ++u) {
+      out[count] = u;
+      count += rows.z_of(u) - z_low <= 2;  // |dz| <= 1, as unsigned
+    }
+  };
+  for (std::uint64_t dx = 0; dx < 3; ++dx) {
+    const std::uint64_t first_row = rows.row_of(v) + dx * extent_y - extent_y - 1;
+    const std::uint32_t first = rows.first_voxel_from(first_row), end = rows.first_voxel_from(first_row + 3);
+    if (dx != 1) {
+      scan(first, end);
+    } else {  // v's own rows: all but v
+      scan(first, static_cast<std::uint32_t>(v));
+      scan(static_cast<std::uint32_t>(v) + 1, end);
+    }
+  }
+  return count;
+}
+
+// The neighbour rows, in parallel over one chunk of voxels per thread: each
+// chunk lists its voxels' neighbours one after the other in a buffer of its
+// own (room for 26 and a spare that a non-match may overwrite, per voxel),
+// then copies the list to its place in the rows.
 void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys& keys, CompressedRows& neighbors) {
   constexpr std::size_t kSlots = 27;
-  const std::size_t n = voxel_keys.size();
+  const std::size_t n = voxel_keys.size(), chunks = thread_chunks(n, kChunkVoxels);
   const CellRows rows(voxel_keys, keys);
-  const std::uint64_t extent_y = keys.extent(1);
-  const auto slots = std::make_unique_for_overwrite<std::uint32_t[]>(n * kSlots);
-  std::vector<std::uint32_t> counts(n + 1, 0);
-  detail::parallel_for_each_index(n, [&](std::size_t v) {
-    std::uint32_t* out = slots.get() + v * kSlots;
-    std::uint32_t count = 0;
-    const std::uint32_t z_low = rows.z_of(v) - 1;
-    const auto scan = [&](std::uint32_t first, std::uint32_t end) {
-      for (std::uint32_t u = first; u < end; ++u) {
-        out[count] = u;
-        count += rows.z_of(u) - z_low <= 2;  // |dz| <= 1, as unsigned
-      }
-    };
-    for (std::uint64_t dx = 0; dx < 3; ++dx) {
-      const std::uint64_t first_row = rows.row_of(v) + dx * extent_y - extent_y - 1;
-      const std::uint32_t first = rows.first_voxel_from(first_row), end = rows.first_voxel_from(first_row + 3);
-      if (dx != 1) {
-        scan(first, end);
-      } else {  // v's own rows: all but v
-        scan(first, static_cast<std::uint32_t>(v));
-        scan(static_cast<std::uint32_t>(v) + 1, end);
-      }
-    }
-    counts[v + 1] = count;
-  });
+  const auto chunk_begin = [&](std::size_t c) { return n * c / chunks; };
+  std::vector<std::unique_ptr<std::uint32_t[]>> lists(chunks);
   neighbors.offsets.resize(n + 1);
   neighbors.offsets[0] = 0;
-  for (std::size_t v = 0; v < n; ++v) neighbors.offsets[v + 1] = neighbors.offsets[v] + counts[v + 1];
-  neighbors.items.resize(neighbors.offsets[n]);
-  detail::parallel_ranges(n, [&](const auto& range) {
-    for (std::size_t v = range.begin(); v < range.end(); ++v) {
-      std::copy_n(slots.get() + v * kSlots, neighbors.count(v), neighbors.items.data() + neighbors.offsets[v]);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    lists[c] = std::make_unique_for_overwrite<std::uint32_t[]>((chunk_begin(c + 1) - chunk_begin(c)) * kSlots);
+    std::uint32_t* out = lists[c].get();
+    for (std::size_t v = chunk_begin(c); v < chunk_begin(c + 1); ++v) {
+      neighbors.offsets[v + 1] = scan_neighbors(rows, keys.extent(1), v, out);
+      out += neighbors.offsets[v + 1];
     }
+  });
+  for (std::size_t v = 0; v < n; ++v) neighbors.offsets[v + 1] += neighbors.offsets[v];
+  neighbors.items.resize(neighbors.offsets[n]);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    const std::uint32_t first = neighbors.offsets[chunk_begin(c)], end = neighbors.offsets[chunk_begin(c + 1)];
+    std::copy_n(lists[c].get(), end - first, neighbors.items.data() + first);
   });
 }
 
