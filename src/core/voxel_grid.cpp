@@ -328,7 +328,7 @@ Eigen::Vector3f unpack_rgb(std::uint32_t rgb) {
 void compute_voxel_means(const CloudView& cloud, VoxelGrid& grid) {
   const std::size_t n = grid.points.rows();
   grid.centroids.resize(n);
-  grid.colors.assign(n, Eigen::Vector3f::Zero());
+  grid.colors.resize(n);  // every voxel's is written below
   if (cloud.has_normals()) grid.mean_normals.resize(n);
   grid.voxel_of_point.assign(cloud.size(), kNoVoxel);
   detail::parallel_ranges(n, [&](const auto& range) {
