@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <memory>
 
 #include "parallel.hpp"
 #include "plane_fit.hpp"
@@ -137,8 +138,8 @@ std::vector<Eigen::Vector3f> given_normals(const VoxelGrid& grid) {
 struct LocalPlane {
   Eigen::Vector3f centre;
   Eigen::Vector3f normal;
-  float tolerance_m = 0;
-  float variation = 0;
+  float tolerance_m;
+  float variation;
 };
 
 // The tolerance is two standard deviations of the fit, plus 0.1 mm for float
@@ -162,7 +163,7 @@ bool lies_on(const LocalPlane& plane, const Eigen::Vector3f& x) {
 // equally flat ones), turned toward the sensor. Both tests are evaluated for
 // every neighbour and the choice is a select, not a branch: which neighbours
 // pass is unpredictable.
-std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std::vector<LocalPlane>& planes) {
+std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const LocalPlane* planes) {
   std::vector<Eigen::Vector3f> normals(grid.size());
   detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
     const Eigen::Vector3f& x = grid.centroids[v];
@@ -186,10 +187,10 @@ std::vector<Eigen::Vector3f> crease_preserving(const VoxelGrid& grid, const std:
 std::vector<Eigen::Vector3f> estimate_voxel_normals(const VoxelGrid& grid, const NormalConfig& config) {
   if (!grid.mean_normals.empty()) return given_normals(grid);
   if (config.crease_preserving) {
-    std::vector<LocalPlane> planes(grid.size());
+    const auto planes = std::make_unique_for_overwrite<LocalPlane[]>(grid.size());  // each is written
     for_each_pca_normal(grid, [&](std::size_t v, const Moments& neighbourhood, const Eigen::Matrix3d& covariance,
                                   const Eigen::Vector3f& n) { planes[v] = local_plane(neighbourhood, covariance, n); });
-    return crease_preserving(grid, planes);
+    return crease_preserving(grid, planes.get());
   }
   std::vector<Eigen::Vector3f> normals(grid.size());
   for_each_pca_normal(grid, [&](std::size_t v, const Moments&, const Eigen::Matrix3d&, const Eigen::Vector3f& n) {
