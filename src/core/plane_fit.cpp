@@ -61,19 +61,6 @@ std::optional<Eigen::Vector3d> eigenvector_of(const Eigen::Matrix3d& a, double l
 
 }  // namespace
 
-// Element by element, each off-diagonal one computed once and mirrored: the
-// same operations as second / n - mean mean^T (a product commutes exactly).
-Eigen::Matrix3d covariance_of(const Moments& m) {
-  const Eigen::Vector3d mean = m.segment<3>(1) / m(0);
-  Eigen::Matrix3d c;
-  c(0, 0) = m(4) / m(0) - mean(0) * mean(0);
-  c(0, 1) = c(1, 0) = m(5) / m(0) - mean(0) * mean(1);
-  c(0, 2) = c(2, 0) = m(6) / m(0) - mean(0) * mean(2);
-  c(1, 1) = m(7) / m(0) - mean(1) * mean(1);
-  c(1, 2) = c(2, 1) = m(8) / m(0) - mean(1) * mean(2);
-  c(2, 2) = m(9) / m(0) - mean(2) * mean(2);
-  return c;
-}
 
 std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a) {
   return eigenvector_of(a, smallest_eigenvalues<1>({a})[0]);
@@ -87,9 +74,5 @@ std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
   return result;
 }
 
-Eigen::Vector3f oriented_normal(const Eigen::Vector3d& direction, const Eigen::Vector3f& reference) {
-  const Eigen::Vector3f normal = direction.cast<float>();
-  return normal.dot(reference) < 0.0f ? Eigen::Vector3f(-normal) : normal;
-}
 
 }  // namespace lccp::detail
