@@ -425,8 +425,8 @@ std::uint32_t scan_neighbors(const CellRows& rows, std::uint64_t extent_y, std::
 
 // The neighbour rows, in parallel over one chunk of voxels per thread: each
 // chunk lists its voxels' neighbours one after the other in a buffer of its
-// own (room for 26 and a spare that a non-match may overwrite, per voxel),
-// then copies the list to its place in the rows.
+// own (room for 26 and a spare that a non-match may overwrite, per voxel);
+// the lists are then appended to the rows.
 void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys& keys, CompressedRows& neighbors) {
   constexpr std::size_t kSlots = 27;
   const std::size_t n = voxel_keys.size(), chunks = thread_chunks(n, kChunkVoxels);
@@ -444,11 +444,12 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
     }
   });
   for (std::size_t v = 0; v < n; ++v) neighbors.offsets[v + 1] += neighbors.offsets[v];
-  neighbors.items.resize(neighbors.offsets[n]);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
-    const std::uint32_t first = neighbors.offsets[chunk_begin(c)], end = neighbors.offsets[chunk_begin(c + 1)];
-    std::copy_n(lists[c].get(), end - first, neighbors.items.data() + first);
-  });
+  neighbors.items.clear();
+  neighbors.items.reserve(neighbors.offsets[n]);  // appended, not zero-filled first
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::uint32_t* list = lists[c].get();
+    neighbors.items.insert(neighbors.items.end(), list, list + (neighbors.offsets[chunk_begin(c + 1)] - neighbors.offsets[chunk_begin(c)]));
+  }
 }
 
 std::string format_number(double value) {
