@@ -105,7 +105,7 @@ void for_each_pca_normal(const VoxelGrid& grid, Take take) {
       const std::size_t first = group * kGroup, count = std::min(kGroup, grid.size() - first);
       std::array<Moments, kGroup> sums;
       std::array<Eigen::Matrix3d, kGroup> covariances;
-      std::fill(covariances.begin() + count, covariances.end(), Eigen::Matrix3d::Zero());  // the last group's spare lanes
+      std::fill(covariances.begin() + count, covariances.end(), Eigen::Matrix3d::Zero());  // a last group's spares
       for (std::size_t j = 0; j < count; ++j) {
         two_rings.sum(first + j, sums[j]);
         covariances[j] = detail::covariance_of(sums[j]);

@@ -61,7 +61,6 @@ std::optional<Eigen::Vector3d> eigenvector_of(const Eigen::Matrix3d& a, double l
 
 }  // namespace
 
-
 std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a) {
   return eigenvector_of(a, smallest_eigenvalues<1>({a})[0]);
 }
@@ -73,6 +72,5 @@ std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
   for (std::size_t j = 0; j < kSideBySide; ++j) result[j] = eigenvector_of(a[j], l_min[j]);
   return result;
 }
-
 
 }  // namespace lccp::detail

@@ -12,8 +12,8 @@ namespace lccp::detail {
 // (n, sx, sy, sz, sxx, sxy, sxz, syy, syz, szz).
 using Moments = Eigen::Matrix<double, 10, 1>;
 
-// Inline and element by element (Eigen's comma initializer is slow where the
-// two-ring sums call it, once a voxel).
+// The moments of one point. Inline and element by element (Eigen's comma
+// initializer is slow where the two-ring sums call it, once a voxel).
 inline Moments moments_of(const Eigen::Vector3f& point) {
   const Eigen::Vector3d c = point.cast<double>();
   Moments m;

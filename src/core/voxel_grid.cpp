@@ -39,11 +39,6 @@ struct CellBounds {
   bool behind_sensor = false;  // a finite point at z <= 0 (camera binning impossible)
   float farthest = 0.0f;       // largest |coordinate| of a finite point
 
-  void add(const Cell& c) {
-    min = min.min(c);
-    max = max.max(c);
-    ++count;
-  }
   void join(const CellBounds& other) {
     min = min.min(other.min);
     max = max.max(other.max);
@@ -447,8 +442,8 @@ void find_neighbors(const std::vector<std::uint64_t>& voxel_keys, const CellKeys
   neighbors.items.clear();
   neighbors.items.reserve(neighbors.offsets[n]);  // appended, not zero-filled first
   for (std::size_t c = 0; c < chunks; ++c) {
-    const std::uint32_t* list = lists[c].get();
-    neighbors.items.insert(neighbors.items.end(), list, list + (neighbors.offsets[chunk_begin(c + 1)] - neighbors.offsets[chunk_begin(c)]));
+    const std::uint32_t length = neighbors.offsets[chunk_begin(c + 1)] - neighbors.offsets[chunk_begin(c)];
+    neighbors.items.insert(neighbors.items.end(), lists[c].get(), lists[c].get() + length);
   }
 }
 
