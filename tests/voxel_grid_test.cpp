@@ -248,6 +248,67 @@ TEST(Voxelize, NeighbourhoodsEqualBruteForceOnAWideSparseCloud) {
   expect_brute_force_neighbourhoods(test::unorganized(pts));
 }
 
+// Voxels by brute force: cubic cells floor(p * (1 / v)) as the library bins
+// them, ordered lexicographically by (x, y, z) (the voxel ids' cell key order),
+// members in index order, centroids as the mean of double sums in member order:
+// the grid must match bit for bit, whether its points were grouped by the
+// counting sort over cell rows or by the radix sort.
+void expect_brute_force_voxels(const PointCloud& cloud, float voxel) {
+  const VoxelGrid g = voxelize(cloud, euclidean(voxel));
+  check_structure(cloud, g);
+  std::map<std::array<int, 3>, std::vector<std::uint32_t>> cells;
+  const float inverse = 1.0f / voxel;
+  for (std::uint32_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3f& p = cloud.points[i];
+    if (!p.allFinite()) continue;
+    cells[{int(std::floor(p.x() * inverse)), int(std::floor(p.y() * inverse)), int(std::floor(p.z() * inverse))}]
+        .push_back(i);
+  }
+  ASSERT_EQ(g.size(), cells.size());
+  std::size_t v = 0;
+  for (const auto& [cell, members] : cells) {
+    ASSERT_EQ(row(g.points, v), members) << "voxel " << v;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const std::uint32_t p : members) sum += cloud.points[p].cast<double>();
+    ASSERT_EQ(g.centroids[v], Eigen::Vector3f((sum / double(members.size())).cast<float>())) << "voxel " << v;
+    ++v;
+  }
+}
+
+TEST(Voxelize, VoxelsEqualBruteForceWhereCellRowsComeUnsorted) {
+  // 6 x 6 cell rows, each filled from its far end toward the sensor, the rows
+  // interleaved: in point order every row runs backwards along z. 41 points a
+  // row (longer than the insertion sort's 32) or 9 (shorter), two points a cell
+  // at the near end. Few rows for the points: the counting sort over rows.
+  for (const int depth : {40, 8}) {
+    SCOPED_TRACE(depth);
+    std::vector<Eigen::Vector3f> pts;
+    for (int k = depth; k >= 0; --k) {
+      for (int x = 0; x < 6; ++x) {
+        for (int y = 0; y < 6; ++y) {
+          pts.emplace_back(0.0025f + 0.005f * x, -0.0125f + 0.005f * y, 1.0025f + 0.005f * k);
+          if (k < 2) pts.emplace_back(0.003f + 0.005f * x, -0.012f + 0.005f * y, 1.003f + 0.005f * k);
+        }
+      }
+    }
+    expect_brute_force_voxels(test::unorganized(pts), 0.005f);
+  }
+}
+
+TEST(Voxelize, VoxelsEqualBruteForceOnCompactAndWideClouds) {
+  // A compact random cloud (counting sort over rows) and clusters 40 m apart
+  // (about 10^8 rows for 900 points: the radix sort).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 0.06f);
+  std::vector<Eigen::Vector3f> compact, wide;
+  for (int i = 0; i < 5000; ++i) compact.emplace_back(-0.1f + u(rng), 0.2f + u(rng), 0.8f + u(rng));
+  for (const Eigen::Vector3f& corner : {Eigen::Vector3f(-20, -20, 1), Eigen::Vector3f(20, 20, 2), Eigen::Vector3f(0, 0, 1.5f)}) {
+    for (int i = 0; i < 300; ++i) wide.push_back(corner + Eigen::Vector3f(u(rng), u(rng), u(rng)) * 0.5f);
+  }
+  expect_brute_force_voxels(test::unorganized(compact), 0.005f);
+  expect_brute_force_voxels(test::unorganized(wide), 0.005f);
+}
+
 TEST(Voxelize, VoxelSizeIsUsed) {
   // With 10 mm voxels (each covers 2 x 2 x 2 of the 5 mm cells: the bases 0.10/0.20/1.00
   // are multiples of 10 mm, and the anchor at +2 mm is still the minimum, so binning from
@@ -526,6 +587,50 @@ TEST(VoxelNormals, IsolatedVoxelPointsToTheSensor) {
   ASSERT_EQ(g.neighbors.count(v), 0u);
   const auto n = estimate_voxel_normals(g, NormalConfig{}).directions;
   EXPECT_LT((n[v] - (-lonely.normalized())).norm(), 1e-5f) << n[v].transpose();
+}
+
+// The PCA normals by brute force: each voxel's two-ring moments summed in the
+// documented order, m(v) + (2 m(v) + sum_{w in N(v)} m(w)) + sum_{u in N(v)}
+// (2 m(u) + sum_{w in N(u)} m(w)), then solved alone and turned toward the
+// sensor; the stage (which computes the sums streamed through sliding windows,
+// in parallel ranges) must give the same normals bit for bit.
+void expect_brute_force_normals(const VoxelGrid& g) {
+  std::vector<detail::Moments> own(g.size()), first_ring(g.size());
+  for (std::size_t v = 0; v < g.size(); ++v) own[v] = detail::moments_of(g.centroids[v]);
+  for (std::size_t u = 0; u < g.size(); ++u) {
+    first_ring[u] = 2.0 * own[u];
+    for (const std::uint32_t w : row(g.neighbors, u)) first_ring[u] += own[w];
+  }
+  const auto normals = estimate_voxel_normals(g, NormalConfig{}).directions;
+  ASSERT_EQ(normals.size(), g.size());
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    detail::Moments m = own[v] + first_ring[v];
+    for (const std::uint32_t u : row(g.neighbors, v)) m += first_ring[u];
+    const auto direction = detail::least_eigenvector(detail::covariance_of(m));
+    const Eigen::Vector3f toward_sensor = -g.centroids[v].normalized();
+    const Eigen::Vector3f expected =
+        m(0) >= 3.0 && direction ? detail::oriented_normal(*direction, toward_sensor) : toward_sensor;
+    ASSERT_EQ(normals[v], expected) << "voxel " << v;
+  }
+}
+
+TEST(VoxelNormals, StreamedTwoRingSumsEqualBruteForce) {
+  // A camera-binned tilted plane, a solid block whose voxels read far along
+  // their ids (long rows), and clusters far apart with isolated voxels.
+  const auto plane = test::render({test::tilted_rect(1.0, 0.20, 30.0, -20.0)});
+  expect_brute_force_normals(voxelize(plane.cloud, VoxelConfig{0.005f, Binning::automatic}));
+  std::vector<Eigen::Vector3f> block, clusters;
+  for (int x = 0; x < 8; ++x)
+    for (int y = 0; y < 8; ++y)
+      for (int z = 0; z < 30; ++z) block.emplace_back(0.0025f + 0.005f * x, 0.0025f + 0.005f * y, 1.0f + 0.0051f * z);
+  expect_brute_force_normals(voxelize(test::unorganized(block), euclidean()));
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.0f, 0.03f);
+  for (const Eigen::Vector3f& corner : {Eigen::Vector3f(-2, -1, 1), Eigen::Vector3f(1, 1, 2), Eigen::Vector3f(0, 0, 1.5f)}) {
+    for (int i = 0; i < 400; ++i) clusters.push_back(corner + Eigen::Vector3f(u(rng), u(rng), u(rng)));
+  }
+  clusters.emplace_back(0.5f, 0.5f, 3.0f);  // alone
+  expect_brute_force_normals(voxelize(test::unorganized(clusters), euclidean()));
 }
 
 // The normals stage solves kSideBySide eigenproblems side by side; each must

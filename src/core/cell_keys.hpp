@@ -22,10 +22,14 @@ class CellKeys {
 
   // False if the padded box has more cells than 64-bit keys can address.
   bool fits() const { return fits_; }
-  std::uint64_t key(const Cell& cell) const {
+  std::uint64_t key(const Cell& cell) const { return row(cell) * extent_.z() + level(cell); }
+  // A cell's (x, y) row of cells, and its place along z within the row:
+  // key = row * extent(2) + level.
+  std::uint64_t row(const Cell& cell) const {
     const auto c = (cell - origin_).cast<std::uint64_t>();
-    return (c.x() * extent_.y() + c.y()) * extent_.z() + c.z();
+    return c.x() * extent_.y() + c.y();
   }
+  std::uint64_t level(const Cell& cell) const { return static_cast<std::uint64_t>(cell.z() - origin_.z()); }
   // Key difference to the neighbour at (dx, dy, dz); apply with wrap-around arithmetic.
   std::uint64_t offset(int dx, int dy, int dz) const {
     return static_cast<std::uint64_t>((static_cast<std::int64_t>(dx) * extent_.y() + dy) * extent_.z() + dz);

@@ -61,21 +61,6 @@ std::optional<Eigen::Vector3d> eigenvector_of(const Eigen::Matrix3d& a, double l
 
 }  // namespace
 
-Moments moments_of(const Eigen::Vector3f& point) {
-  const Eigen::Vector3d c = point.cast<double>();
-  Moments m;
-  m << 1.0, c.x(), c.y(), c.z(), c.x() * c.x(), c.x() * c.y(), c.x() * c.z(), c.y() * c.y(), c.y() * c.z(),
-      c.z() * c.z();
-  return m;
-}
-
-Eigen::Matrix3d covariance_of(const Moments& m) {
-  const Eigen::Vector3d mean = m.segment<3>(1) / m(0);
-  Eigen::Matrix3d second;
-  second << m(4), m(5), m(6), m(5), m(7), m(8), m(6), m(8), m(9);
-  return second / m(0) - mean * mean.transpose();
-}
-
 std::optional<Eigen::Vector3d> least_eigenvector(const Eigen::Matrix3d& a) {
   return eigenvector_of(a, smallest_eigenvalues<1>({a})[0]);
 }
@@ -86,11 +71,6 @@ std::array<std::optional<Eigen::Vector3d>, kSideBySide> least_eigenvectors(
   std::array<std::optional<Eigen::Vector3d>, kSideBySide> result;
   for (std::size_t j = 0; j < kSideBySide; ++j) result[j] = eigenvector_of(a[j], l_min[j]);
   return result;
-}
-
-Eigen::Vector3f oriented_normal(const Eigen::Vector3d& direction, const Eigen::Vector3f& reference) {
-  const Eigen::Vector3f normal = direction.cast<float>();
-  return normal.dot(reference) < 0.0f ? Eigen::Vector3f(-normal) : normal;
 }
 
 }  // namespace lccp::detail
