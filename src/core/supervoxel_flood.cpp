@@ -50,13 +50,16 @@ struct PatchSums {
   Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
   float count = 0;
 
-  void add(const Eigen::Vector3f& x, const Eigen::Vector3f& n, const Eigen::Vector3f& colour, Patch& mean) {
+  // colour: null where the colour weight is 0 (the patch's colour is then not read).
+  void add(const Eigen::Vector3f& x, const Eigen::Vector3f& n, const Eigen::Vector3f* colour, Patch& mean) {
     xyz += x;
     normal += n;
-    rgb += colour;
     count += 1;
     mean.centre = xyz / count;
-    mean.rgb = rgb / count;
+    if (colour) {
+      rgb += *colour;
+      mean.rgb = rgb / count;
+    }
     const float length = normal.norm();
     mean.normal = length > 1e-6f ? Eigen::Vector3f(normal / length) : n;
   }
@@ -153,7 +156,7 @@ class Flood {
   void settle(std::uint32_t u, std::uint32_t k) {
     if (claims_[u].owner != kNone) return;
     claims_[u].owner = k;
-    sums_[k].add(voxels_[u].xyz, voxels_[u].normal, grid_.colors[u], patches_[k]);
+    sums_[k].add(voxels_[u].xyz, voxels_[u].normal, coloured_ ? &grid_.colors[u] : nullptr, patches_[k]);
     const Patch& patch = patches_[k];
     for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
       Claim& claim = claims_[*w];
