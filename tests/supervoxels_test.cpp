@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "lccp/config.hpp"
+#include "lccp/core/lccp.hpp"
 #include "lccp/core/normals.hpp"
 #include "lccp/core/supervoxels.hpp"
 #include "lccp/core/voxel_grid.hpp"
@@ -96,6 +97,27 @@ TEST(Supervoxels, FlatPatchAtOneMetre) {
     EXPECT_NEAR(s.sv.centroids[i].z(), 1.0f, 1e-5f) << "supervoxel " << i << " off the plane";
     EXPECT_LT(test::angle_deg(s.sv.normals[i], Eigen::Vector3d(0, 0, -1)), 1.0) << "supervoxel " << i;
   }
+}
+
+// The flood grows bands of at least 12 288 voxels apart (supervoxel_flood.cpp):
+// a wall of about 28 000 voxels is two bands, whose patches meet along the
+// border; the patches either side are coplanar, so LCCP joins them into one
+// segment, and every band's patch keeps to the plane.
+TEST(Supervoxels, FloodBandsOfOnePlaneJoinIntoOneSegment) {
+  const auto scene = test::render({test::centered_rect({0, 0, 1.0}, Eigen::Vector3d::UnitX(), 0.95, Eigen::Vector3d::UnitY(), 0.75)});
+  const LccpConfig cfg;
+  const Stages s = run(scene.cloud, cfg);
+  check_supervoxels(s);
+  ASSERT_GE(s.grid.size(), 2u * 12288u) << "the plane must span two bands";
+  for (std::size_t i = 0; i < s.sv.size(); ++i) {
+    EXPECT_LT(test::angle_deg(s.sv.normals[i], Eigen::Vector3d(0, 0, -1)), 1.0) << "supervoxel " << i;
+  }
+  const std::vector<std::uint32_t> labels = LccpSegmenter(cfg).segment(scene.cloud).labels;
+  std::set<std::uint32_t> segments;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (scene.cloud.points[i].allFinite()) segments.insert(labels[i]);
+  }
+  EXPECT_EQ(segments, std::set<std::uint32_t>{1});
 }
 
 TEST(Supervoxels, FlatPatchEuclideanBinning) {

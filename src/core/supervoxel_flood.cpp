@@ -15,6 +15,10 @@ namespace {
 constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr float kUnreached = std::numeric_limits<float>::infinity();
 constexpr float kReachSeeds = 1.8f;  // VCCS's reach, int(1.8 s / v) - 1 rings of v: 1.8 seed spacings
+// Voxels a flood band holds at least (a 640 x 480 table-top frame at P1 has
+// about 50 000: four bands). A band's border cuts patches that would cross
+// it; both sides lie on one surface, so LCCP's convexity joins them again.
+constexpr std::size_t kBandVoxels = 12288;
 
 // What the flood reads of a voxel, in one place: its centroid, the sensor's
 // depth tolerance at its depth, its normal.
@@ -102,32 +106,40 @@ class BucketQueue {
   std::vector<std::vector<std::uint64_t>> buckets_ = std::vector<std::vector<std::uint64_t>>(kBuckets);
 };
 
+// A run of voxel ids [first, last) flooded on its own: ids are x-major, so a
+// band is a slab of the grid across x. Its patches, their sums and its queue.
+struct Band {
+  std::uint32_t first = 0, last = 0;
+  BucketQueue queue;
+  std::vector<Patch> patches;
+  std::vector<PatchSums> sums;
+};
+
 class Flood {
  public:
   Flood(const VoxelGrid& grid, const VoxelNormals& normals, const LccpConfig& config)
       : grid_(grid), planar_(normals.planar), config_(config.supervoxels),
         spacing_(config.supervoxels, config.voxels.voxel_size_m, grid.binning),
         cos_max_angle_(std::cos(config.supervoxels.max_normal_angle_deg * std::numbers::pi_v<float> / 180.0f)),
-        coloured_(config.supervoxels.color_weight > 0.0f), queue_(max_distance()), voxels_(grid.size()),
-        claims_(grid.size()) {
+        coloured_(config.supervoxels.color_weight > 0.0f), voxels_(grid.size()), claims_(grid.size()) {
     parallel_for_each_index(grid.size(), [&](std::size_t v) {
       const Eigen::Vector3f& x = grid.centroids[v];
       voxels_[v] = {x, config.sensor.depth_tolerance_m(x.z()), normals.directions[v]};
     });
   }
 
-  // The seeds' patches flood the voxels together; what none of them admits
-  // seeds patches of its own, in voxel order.
+  // The voxels in bands of fixed size, each flooded on its own, in parallel:
+  // a band's seeds' patches flood its voxels together; what none of them
+  // admits seeds patches of its own, in voxel order. Patch ids follow the bands.
   void grow(const std::vector<std::uint32_t>& seeds) {
-    for (const std::uint32_t v : seeds) plant(v);
-    queue_.drain([&](std::uint32_t u, std::uint32_t k) { settle(u, k); });
-    for (std::uint32_t v = 0; v < claims_.size(); ++v) {
-      if (claims_[v].owner != kNone) continue;
-      plant(v);
-      queue_.drain([&](std::uint32_t u, std::uint32_t k) { settle(u, k); });
-    }
+    std::vector<Band> bands = make_bands();
+    parallel_for_each_index(bands.size(), [&](std::size_t b) { flood(bands[b], seeds); });
     owner_.resize(claims_.size());
-    for (std::size_t v = 0; v < claims_.size(); ++v) owner_[v] = claims_[v].owner;
+    for (Band& band : bands) {
+      const auto offset = static_cast<std::uint32_t>(patches_.size());
+      for (std::uint32_t v = band.first; v < band.last; ++v) owner_[v] = offset + claims_[v].owner;
+      patches_.insert(patches_.end(), band.patches.begin(), band.patches.end());
+    }
   }
 
   void refine();
@@ -141,30 +153,56 @@ class Flood {
            config_.spatial_weight * kReachSeeds;
   }
 
-  void plant(std::uint32_t v) {
-    const float spacing = spacing_.at(voxels_[v].xyz.z());
-    const float reach = kReachSeeds * spacing;
-    patches_.push_back({voxels_[v].xyz, voxels_[v].normal, grid_.colors[v], 1.0f / spacing, reach * reach});
-    sums_.emplace_back();
-    claims_[v].distance = 0;
-    queue_.push(0, v, static_cast<std::uint32_t>(patches_.size() - 1));
+  // Bands of at least kBandVoxels voxels (one if fewer), equal in size: they
+  // depend on the grid alone, never on the thread count, so the labels do not either.
+  std::vector<Band> make_bands() const {
+    const std::size_t n = claims_.size(), count = std::max<std::size_t>(1, n / kBandVoxels);
+    std::vector<Band> bands;
+    for (std::size_t b = 0; b < count; ++b) {
+      bands.push_back(Band{static_cast<std::uint32_t>(n * b / count), static_cast<std::uint32_t>(n * (b + 1) / count),
+                           BucketQueue(max_distance()), {}, {}});
+    }
+    return bands;
   }
 
-  // Voxel u joins patch k (its first and nearest claim); its free neighbours
-  // that k admits are queued at their distance to k as it now stands, if
-  // nearer than their nearest claim so far.
-  void settle(std::uint32_t u, std::uint32_t k) {
+  void flood(Band& band, const std::vector<std::uint32_t>& seeds) {
+    const auto drain = [&] { band.queue.drain([&](std::uint32_t u, std::uint32_t k) { settle(band, u, k); }); };
+    for (const std::uint32_t v : seeds) {
+      if (v >= band.first && v < band.last) plant(band, v);
+    }
+    drain();
+    for (std::uint32_t v = band.first; v < band.last; ++v) {
+      if (claims_[v].owner != kNone) continue;
+      plant(band, v);
+      drain();
+    }
+  }
+
+  void plant(Band& band, std::uint32_t v) {
+    const float spacing = spacing_.at(voxels_[v].xyz.z());
+    const float reach = kReachSeeds * spacing;
+    band.patches.push_back({voxels_[v].xyz, voxels_[v].normal, grid_.colors[v], 1.0f / spacing, reach * reach});
+    band.sums.emplace_back();
+    claims_[v].distance = 0;
+    band.queue.push(0, v, static_cast<std::uint32_t>(band.patches.size() - 1));
+  }
+
+  // Voxel u joins patch k of its band (its first and nearest claim); its free
+  // neighbours in the band that k admits are queued at their distance to k as
+  // it now stands, if nearer than their nearest claim so far.
+  void settle(Band& band, std::uint32_t u, std::uint32_t k) {
     if (claims_[u].owner != kNone) return;
     claims_[u].owner = k;
-    sums_[k].add(voxels_[u].xyz, voxels_[u].normal, coloured_ ? &grid_.colors[u] : nullptr, patches_[k]);
-    const Patch& patch = patches_[k];
+    band.sums[k].add(voxels_[u].xyz, voxels_[u].normal, coloured_ ? &grid_.colors[u] : nullptr, band.patches[k]);
+    const Patch& patch = band.patches[k];
     for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
+      if (*w < band.first || *w >= band.last) continue;
       Claim& claim = claims_[*w];
       if (claim.owner != kNone) continue;
       const float d = admitted_distance(*w, patch);
       if (!(d < claim.distance)) continue;
       claim.distance = d;
-      queue_.push(d, *w, k);
+      band.queue.push(d, *w, k);
     }
   }
 
@@ -177,12 +215,10 @@ class Flood {
   const SeedSpacing spacing_;
   const float cos_max_angle_;
   const bool coloured_;
-  BucketQueue queue_;
   std::vector<Voxel> voxels_;
   std::vector<Claim> claims_;
   std::vector<std::uint32_t> owner_;  // per voxel, its patch once the flood is done
-  std::vector<Patch> patches_;
-  std::vector<PatchSums> sums_;
+  std::vector<Patch> patches_;  // every band's, in band order
 };
 
 // D = w_n (1 - |n1.n2|) + w_c |drgb| / 255 + w_s |dx| / s   (VCCS distance; s at the seed's depth)
