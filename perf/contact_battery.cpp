@@ -105,17 +105,11 @@ int main() {
   Tally all, clutter;
   print_header();
   for (std::size_t k = 0; k < layouts.size(); ++k) {
-    for (const double elevation : {45.0, 30.0}) {
-      for (const bool organized : {true, false}) {
-        for (const bool noisy : {false, true}) {
-          lccp::test::ContactView view;
-          view.elevation_deg = elevation, view.organized = organized, view.noisy = noisy;
-          const std::array<ContactVerdict, kMethods> v = methods.run(lccp::test::contact_scene(layouts[k], view));
-          all.add(v);
-          if (k >= single_objects) clutter.add(v);
-          print_line(layouts[k].name, view, v);
-        }
-      }
+    for (const lccp::test::ContactView& view : lccp::test::contact_views()) {
+      const std::array<ContactVerdict, kMethods> v = methods.run(lccp::test::contact_scene(layouts[k], view));
+      all.add(v);
+      if (k >= single_objects) clutter.add(v);
+      print_line(layouts[k].name, view, v);
     }
   }
   std::printf("flags: L an object lost into the plane, M an object's best segment mostly another object's, "

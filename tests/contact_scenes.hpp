@@ -119,6 +119,27 @@ struct ContactView {
   std::uint64_t seed = 1;      // noise and shuffle
 };
 
+// The eight views every contact case is checked from: elevation 45 and 30 deg,
+// organized and unorganized, noise-free and with the Kinect noise model.
+inline std::vector<ContactView> contact_views() {
+  std::vector<ContactView> views;
+  for (const double elevation : {45.0, 30.0}) {
+    for (const bool organized : {true, false}) {
+      for (const bool noisy : {false, true}) {
+        ContactView view;
+        view.elevation_deg = elevation, view.organized = organized, view.noisy = noisy;
+        views.push_back(view);
+      }
+    }
+  }
+  return views;
+}
+
+inline std::string describe(const ContactView& view) {
+  return "elevation " + std::to_string(int(std::lround(view.elevation_deg))) +
+         (view.organized ? " organized" : " unorganized") + (view.noisy ? " kinect noise" : " noise-free");
+}
+
 struct ContactScene {
   PointCloud cloud;
   Labels truth;  // per point: 0 no return, kContactPlaneLabel, or the label of the solid seen

@@ -76,20 +76,13 @@ TEST(ContactScenes, KinectNoiseStaysWithinItsModel) {
 // object is not lost into the plane and its best segment is mostly the object.
 void expect_apart_from_the_plane(const test::ContactObject& object, const LccpConfig& config) {
   const LccpSegmenter segmenter(config);
-  for (const double elevation : {45.0, 30.0}) {
-    for (const bool organized : {true, false}) {
-      for (const bool noisy : {false, true}) {
-        test::ContactView view;
-        view.elevation_deg = elevation, view.organized = organized, view.noisy = noisy;
-        SCOPED_TRACE(testing::Message() << "elevation " << elevation << (organized ? " organized" : " unorganized")
-                                        << (noisy ? " kinect noise" : " noise-free"));
-        const test::ContactScene scene = test::contact_scene(object, view);
-        const SegmentationScores s =
-            score_objects(segmenter.segment(scene.cloud).labels, scene.truth, scene.cloud.points, LabelRange{0, 9});
-        EXPECT_EQ(s.objects_lost, 0u);
-        EXPECT_GE(s.weighted_overlap, 0.8);
-      }
-    }
+  for (const test::ContactView& view : test::contact_views()) {
+    SCOPED_TRACE(test::describe(view));
+    const test::ContactScene scene = test::contact_scene(object, view);
+    const SegmentationScores s =
+        score_objects(segmenter.segment(scene.cloud).labels, scene.truth, scene.cloud.points, LabelRange{0, 9});
+    EXPECT_EQ(s.objects_lost, 0u);
+    EXPECT_GE(s.weighted_overlap, 0.8);
   }
 }
 
@@ -202,22 +195,15 @@ class ObjectsTouching : public testing::TestWithParam<test::ContactLayout> {};
 
 TEST_P(ObjectsTouching, StandApartFromThePlaneAndEachOther) {
   const LccpSegmenter segmenter(LccpConfig{});
-  for (const double elevation : {45.0, 30.0}) {
-    for (const bool organized : {true, false}) {
-      for (const bool noisy : {false, true}) {
-        test::ContactView view;
-        view.elevation_deg = elevation, view.organized = organized, view.noisy = noisy;
-        SCOPED_TRACE(testing::Message() << "elevation " << elevation << (organized ? " organized" : " unorganized")
-                                        << (noisy ? " kinect noise" : " noise-free"));
-        const test::ContactScene scene = test::contact_scene(GetParam(), view);
-        const test::ContactVerdict v = test::contact_verdict(segmenter.segment(scene.cloud).labels, scene);
-        EXPECT_TRUE(v.lost.empty()) << v.failures();
-        EXPECT_GE(v.weighted_overlap, 0.8) << v.failures();
-        for (const test::ObjectShare& o : v.objects) {
-          EXPECT_GE(o.overlap, 0.8) << o.object << ": " << v.failures();
-          EXPECT_GT(o.share, 0.5) << o.object << ": " << v.failures();
-        }
-      }
+  for (const test::ContactView& view : test::contact_views()) {
+    SCOPED_TRACE(test::describe(view));
+    const test::ContactScene scene = test::contact_scene(GetParam(), view);
+    const test::ContactVerdict v = test::contact_verdict(segmenter.segment(scene.cloud).labels, scene);
+    EXPECT_TRUE(v.lost.empty()) << v.failures();
+    EXPECT_GE(v.weighted_overlap, 0.8) << v.failures();
+    for (const test::ObjectShare& o : v.objects) {
+      EXPECT_GE(o.overlap, 0.8) << o.object << ": " << v.failures();
+      EXPECT_GT(o.share, 0.5) << o.object << ": " << v.failures();
     }
   }
 }

@@ -1,11 +1,14 @@
-"""What the ROS integration test (test_lccp_ros.py) and perf/ros_latency.py share:
-a private ROS master on a free port of 127.0.0.1 with its own ROS_HOME and
-ROS_LOG_DIR, the processes they start (stopped in reverse order, SIGINT then
-SIGKILL), and waiting for a condition with a limit."""
+"""What the ROS tests (test_lccp_ros.py, test_nodelet.py, test_parameters.py) and
+perf/ros_latency.py share: a private ROS master on a free port of 127.0.0.1 with its
+own ROS_HOME and ROS_LOG_DIR, the processes they start (stopped in reverse order,
+SIGINT then SIGKILL), waiting for a condition with a limit, and a test's run in a
+scratch folder whose logs are shown when it fails."""
 import os
 import signal
 import socket
 import subprocess
+import sys
+import tempfile
 import time
 
 
@@ -60,3 +63,24 @@ def start_master(processes, tmp, timeout_s):
     wait_for(lambda: rosgraph.Master("/lccp_harness", master_uri=env["ROS_MASTER_URI"]).is_online(),
              timeout_s, "the ROS master")
     return env
+
+
+def run_in_scratch(prefix, logs, run):
+    """run(tmp, processes) in a scratch folder; on failure the tail of each log in
+    `logs` (names in that folder) goes to stderr; the processes are stopped, and a
+    rospy node this process started is shut down, either way."""
+    processes = Processes()
+    with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
+        try:
+            run(tmp, processes)
+        except BaseException:
+            for log in logs:
+                path = os.path.join(tmp, log)
+                if os.path.exists(path):
+                    print(f"--- {log} ---\n" + open(path, errors="replace").read()[-4000:], file=sys.stderr)
+            raise
+        finally:
+            rospy = sys.modules.get("rospy")
+            if rospy is not None and rospy.core.is_initialized():
+                rospy.signal_shutdown("test done")
+            processes.stop_all()

@@ -18,8 +18,6 @@ import json
 import os
 import signal
 import subprocess
-import sys
-import tempfile
 import threading
 import time
 
@@ -31,7 +29,7 @@ from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 from std_msgs.msg import String
 from visualization_msgs.msg import Marker, MarkerArray
 
-from ros_harness import Processes, start_master, wait_for
+from ros_harness import run_in_scratch, start_master, wait_for
 
 RESULT_TIMEOUT_S = 120  # one frame through the node on a loaded 2-core machine
 START_TIMEOUT_S = 60
@@ -236,20 +234,8 @@ def main():
     parser.add_argument("--recording", required=True)
     parser.add_argument("--frames", type=int, default=62)
     args = parser.parse_args()
-    processes = Processes()
-    with tempfile.TemporaryDirectory(prefix="lccp_ros_test_") as tmp:
-        try:
-            run(args, tmp, processes)
-        except BaseException:
-            for log in ("lccp_ros.log", "master.log"):
-                path = os.path.join(tmp, log)
-                if os.path.exists(path):
-                    print(f"--- {log} ---\n" + open(path, errors="replace").read()[-4000:], file=sys.stderr)
-            raise
-        finally:
-            if rospy.core.is_initialized():
-                rospy.signal_shutdown("test done")
-            processes.stop_all()
+    run_in_scratch("lccp_ros_test_", ("lccp_ros.log", "master.log"),
+                   lambda tmp, processes: run(args, tmp, processes))
 
 
 if __name__ == "__main__":

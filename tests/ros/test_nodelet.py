@@ -12,8 +12,6 @@ labels of `lccp replay` of the same bag. Own ROS master on a free port; stops wh
 import argparse
 import os
 import subprocess
-import sys
-import tempfile
 import time
 
 import numpy as np
@@ -21,7 +19,7 @@ import rosbag
 import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2
 
-from ros_harness import Processes, start_master, wait_for
+from ros_harness import run_in_scratch, start_master, wait_for
 from test_lccp_ros import labels_of, replay_frames
 
 START_TIMEOUT_S = 120  # a manager loading the library on a loaded 2-core machine
@@ -88,20 +86,8 @@ def main():
     parser.add_argument("--build-dir", required=True)
     parser.add_argument("--recording", required=True)
     args = parser.parse_args()
-    processes = Processes()
-    with tempfile.TemporaryDirectory(prefix="lccp_nodelet_test_") as tmp:
-        try:
-            run(args, tmp, processes)
-        except BaseException:
-            for log in ("manager.log", "load.log", "master.log"):
-                path = os.path.join(tmp, log)
-                if os.path.exists(path):
-                    print(f"--- {log} ---\n" + open(path, errors="replace").read()[-4000:], file=sys.stderr)
-            raise
-        finally:
-            if rospy.core.is_initialized():
-                rospy.signal_shutdown("test done")
-            processes.stop_all()
+    run_in_scratch("lccp_nodelet_test_", ("manager.log", "load.log", "master.log"),
+                   lambda tmp, processes: run(args, tmp, processes))
 
 
 if __name__ == "__main__":

@@ -14,12 +14,10 @@ import os
 import re
 import signal
 import subprocess
-import sys
-import tempfile
 
 import rosgraph
 
-from ros_harness import Processes, start_master, wait_for
+from ros_harness import run_in_scratch, start_master, wait_for
 
 START_TIMEOUT_S = 60
 NODE = "lccp_typo"
@@ -87,18 +85,8 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--lccp-ros", required=True)
     args = parser.parse_args()
-    processes = Processes()
-    with tempfile.TemporaryDirectory(prefix="lccp_ros_parameters_") as tmp:
-        try:
-            run(args, tmp, processes)
-        except BaseException:
-            for log in ("plain.log", "master.log"):
-                path = os.path.join(tmp, log)
-                if os.path.exists(path):
-                    print(f"--- {log} ---\n" + open(path, errors="replace").read()[-4000:], file=sys.stderr)
-            raise
-        finally:
-            processes.stop_all()
+    run_in_scratch("lccp_ros_parameters_", ("plain.log", "master.log"),
+                   lambda tmp, processes: run(args, tmp, processes))
 
 
 if __name__ == "__main__":
