@@ -245,12 +245,13 @@ TEST_P(MosdScene, LabelsDenseAndObjectWovAboveFloor) {
   const SegmentationResult r = LccpSegmenter(LccpConfig{}).segment(lc.cloud);  // P1
   expect_valid_labels(lc.cloud, r);
   const SegmentationScores s = score_segmentation(r.labels, *lc.labels, lc.cloud.points, LabelRange{0, 9});
-  // Measured at P1 with the flood growth: mosd_test2 0.9876, mosd_test34 0.9412,
-  // mosd_test60 0.9500 (VCCS: 0.9862, 0.9188, 0.9451). mosd_test43 is unorganized: since automatic binning takes the camera
+  // Measured at P1 with the flood growth in bands (f4e0c3e): mosd_test2 0.9877,
+  // mosd_test34 0.9411, mosd_test60 0.9525 (VCCS: 0.9862, 0.9188, 0.9451).
+  // mosd_test43 is unorganized: since automatic binning takes the camera
   // transform for any cloud a camera sees (as for the organized scenes), it is
-  // no longer binned in cubes, and measures 0.9063 (0.902-0.940 over eight grid
-  // phases, mean 0.919; cubes 0.917-0.941, mean 0.929): its floor follows the
-  // rule above from that.
+  // no longer binned in cubes, and measures 0.9193 (before the bands 0.9063;
+  // 0.902-0.940 over eight grid phases, mean 0.919; cubes 0.917-0.941, mean
+  // 0.929): its floor follows the rule above from that.
   EXPECT_GE(s.weighted_overlap, GetParam().wov_floor) << GetParam().name << ": WOv " << s.weighted_overlap << ", tp " << s.true_positive
                                       << ", fp " << s.false_positive << ", segments " << r.segment_count;
   RecordProperty("wov", std::to_string(s.weighted_overlap));
@@ -261,7 +262,7 @@ TEST_P(MosdScene, LabelsDenseAndObjectWovAboveFloor) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, MosdScene, ::testing::Values(SceneFloor{"mosd_test2", 0.97}, SceneFloor{"mosd_test34", 0.925},
-                                           SceneFloor{"mosd_test60", 0.935}, SceneFloor{"mosd_test43", 0.89}),
+                                           SceneFloor{"mosd_test60", 0.935}, SceneFloor{"mosd_test43", 0.90}),
                          [](const auto& info) { return info.param.name; });
 
 // --- LCCP on synthetic scenes ------------------------------------------------------------
