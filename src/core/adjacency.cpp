@@ -7,6 +7,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "cell_keys.hpp"
+#include "neighbour_owners.hpp"
 #include "parallel.hpp"
 
 namespace lccp {
@@ -21,19 +22,12 @@ std::vector<Edge> supervoxel_adjacency(const VoxelGrid& grid, const Supervoxels&
     auto& pairs = local_pairs.local();
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
       if (absorbed[v]) continue;
-      // Gather the neighbours' larger ids without branching (which neighbours
-      // qualify is unpredictable at boundaries), dropping repeats of the last.
+      // The neighbours' larger ids (absorbed voxels left out).
       const std::uint32_t a = supervoxel_of[v];
       std::array<std::uint32_t, 26> larger;
-      std::size_t count = 0;
-      std::uint32_t last = a;
-      for (const std::uint32_t* w = grid.neighbors.begin(v); w != grid.neighbors.end(v); ++w) {
-        const std::uint32_t b = supervoxel_of[*w];
-        const bool kept = (b > a) & (absorbed[*w] == 0) & (b != last);
-        larger[count] = b;
-        count += kept;
-        last = kept ? b : last;
-      }
+      const std::size_t count = detail::neighbour_owners(
+          grid.neighbors, v, supervoxel_of.data(),
+          [&](std::uint32_t w, std::uint32_t b) { return (b > a) & (absorbed[w] == 0); }, larger);
       const auto first_of_voxel = static_cast<std::ptrdiff_t>(pairs.size());
       for (std::size_t i = 0; i < count; ++i) {
         const std::uint64_t pair = std::uint64_t{a} << id_bits | larger[i];

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "neighbour_owners.hpp"
 #include "parallel.hpp"
 #include "seed_spacing.hpp"
 
@@ -253,18 +254,10 @@ void Flood::refine() {
   parallel_for_each_index(owner_.size(), [&](std::size_t index) {
     const auto v = static_cast<std::uint32_t>(index);
     const std::uint32_t own = owner_[v];
-    // The neighbours' other patches, repeats of the previous one dropped
-    // (neighbours of one patch come in runs), then measured.
+    // The neighbours' other patches, then measured.
     std::array<std::uint32_t, 26> foreign;
-    std::size_t count = 0;
-    std::uint32_t last = own;
-    for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
-      const std::uint32_t k = owner_[*w];
-      const bool kept = (k != own) & (k != last);
-      foreign[count] = k;
-      count += kept;
-      last = kept ? k : last;
-    }
+    const std::size_t count = neighbour_owners(
+        grid_.neighbors, v, owner_.data(), [own](std::uint32_t, std::uint32_t k) { return k != own; }, foreign);
     std::uint32_t best = own;
     float best_distance = count > 0 ? distance(v, patches_[own]) : 0.0f;
     for (std::size_t i = 0; i < count; ++i) {

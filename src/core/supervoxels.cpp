@@ -11,6 +11,7 @@
 
 #include "cell_keys.hpp"
 #include "lccp/error.hpp"
+#include "neighbour_owners.hpp"
 #include "parallel.hpp"
 #include "seed_spacing.hpp"
 #include "supervoxel_flood.hpp"
@@ -212,21 +213,13 @@ class Grower {
   // The nearest supervoxel among v's neighbours' other than v's own (ties:
   // smaller id), with its distance; kNone if every neighbour is v's own or free.
   std::pair<std::uint32_t, float> nearest_other(std::size_t v) const {
-    // Gather the neighbours' foreign owners, dropping repeats of the previous
-    // one (neighbours of one owner come in runs), measure them all, then take
-    // the least. Each step is free of branches: at boundaries they mispredict,
-    // and independent distances let the square roots and divisions overlap.
+    // Gather the neighbours' foreign owners, measure them all, then take the
+    // least. Each step is free of branches: at boundaries they mispredict, and
+    // independent distances let the square roots and divisions overlap.
     const std::uint32_t current = owner_[v];
     std::array<std::uint32_t, 26> foreign;
-    std::size_t count = 0;
-    std::uint32_t last = kNone;
-    for (const std::uint32_t* w = grid_.neighbors.begin(v); w != grid_.neighbors.end(v); ++w) {
-      const std::uint32_t k = owner_[*w];
-      const bool kept = (k != current) & (k != kNone) & (k != last);
-      foreign[count] = k;
-      count += kept;
-      last = kept ? k : last;
-    }
+    const std::size_t count = detail::neighbour_owners(
+        grid_.neighbors, v, owner_.data(), [current](std::uint32_t, std::uint32_t k) { return k != current; }, foreign);
     std::array<float, 26> d;
     for (std::size_t i = 0; i < count; ++i) d[i] = distance(v, centres_[foreign[i]]);
     std::uint32_t best = kNone;
