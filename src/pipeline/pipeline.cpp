@@ -117,7 +117,7 @@ class OnExit {
 class Run {
  public:
   Run(const SceneSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
-      unsigned frames_in_flight, std::stop_token stop);
+      unsigned frames_in_flight, std::stop_token stop, LiveStats* live);
   PipelineOutcome execute();
 
  private:
@@ -146,12 +146,13 @@ class Run {
   std::mutex error_mutex_;
   std::string error_;                      // the first error, under error_mutex_
   std::optional<std::uint64_t> last_index_;  // the capture thread's
-  PipelineStats stats_;                    // received, gaps: capture thread; the rest: deliver_
+  LiveStats own_stats_;
+  LiveStats& stats_;                       // received, gaps: capture thread; the rest: deliver_
   bool sink_failed_ = false;               // deliver_ only (a serial node)
 };
 
 Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
-         unsigned frames_in_flight, std::stop_token stop)
+         unsigned frames_in_flight, std::stop_token stop, LiveStats* live)
     : segmenter_(segmenter),
       tracker_(segmenter.new_tracker()),
       source_(source),
@@ -175,7 +176,8 @@ Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::functi
         return flow::continue_msg{};
       }),
       close_on_halt_(halt_.get_token(), [this] { admission_.close(); }),
-      halt_on_stop_(std::move(stop), [this] { halt_.request_stop(); }) {
+      halt_on_stop_(std::move(stop), [this] { halt_.request_stop(); }),
+      stats_(live ? *live : own_stats_) {
   flow::make_edge(entry_, back_projection_);
   flow::sender<Message>* previous = &back_projection_;
   for (unsigned node = 0; node + 1 < kPipelineNodes.size(); ++node) {
@@ -225,9 +227,13 @@ void Run::take(Frame frame) {
   const bool entered = policy_ == DropPolicy::drop_oldest ? admission_.enter_or_wait(std::move(frame))
                                                           : admission_.enter_when_free(std::move(frame));
   if (!entered) return;
-  ++stats_.frames_received;
-  if (last_index_ && index > *last_index_ + 1) stats_.sensor_gaps += index - *last_index_ - 1;
+  const std::uint64_t gap = last_index_ && index > *last_index_ + 1 ? index - *last_index_ - 1 : 0;
   last_index_ = index;
+  stats_.update([&](PipelineStats& s) {
+    ++s.frames_received;
+    s.sensor_gaps += gap;
+    s.frames_dropped += gap;  // never handed to the sink
+  });
 }
 
 void Run::deliver(const Message& message) {
@@ -237,16 +243,16 @@ void Run::deliver(const Message& message) {
   finish_frame(f);
   FrameResult& result = f.result;
   const bool stage_failed = !result.error.empty();  // before the sink, which may move the result
-  if (sink_failed_) {
-    ++stats_.frames_dropped;
-  } else if (auto error = error_of([&] { sink_(result); })) {
-    ++stats_.frames_failed;
-    sink_failed_ = true;
-    fail(std::move(*error));
-    halt_.request_stop();  // no more frames: the sink cannot take them
-  } else {
-    ++(stage_failed ? stats_.frames_failed : stats_.frames_completed);
+  std::uint64_t PipelineStats::*count = &PipelineStats::frames_dropped;
+  if (!sink_failed_) {
+    if (auto error = error_of([&] { sink_(result); })) {
+      sink_failed_ = true;
+      fail(std::move(*error));
+      halt_.request_stop();  // no more frames: the sink cannot take them
+    }
+    count = sink_failed_ || stage_failed ? &PipelineStats::frames_failed : &PipelineStats::frames_completed;
   }
+  stats_.update([&](PipelineStats& s) { ++(s.*count); });
   result = FrameResult{};  // free the frame now, not when the last copy of the pointer goes
   admission_.release();
 }
@@ -269,10 +275,13 @@ PipelineOutcome Run::execute() {
   graph_.wait_for_all();
   capture.join();
   // Joined: a frame still waiting at the end never entered.
-  stats_.frames_dropped += stats_.sensor_gaps + admission_.drop_waiting();
-  stats_.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const std::uint64_t waiting = admission_.drop_waiting();
+  stats_.update([&](PipelineStats& s) {
+    s.frames_dropped += waiting;
+    s.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  });
   std::lock_guard lock(error_mutex_);
-  return {stats_, error_};
+  return {stats_.snapshot(), error_};
 }
 
 }  // namespace
@@ -282,8 +291,8 @@ Pipeline::Pipeline(const SceneSegmenter& segmenter, PipelineConfig config) : seg
 }
 
 PipelineOutcome Pipeline::run(FrameSource& source, const std::function<void(FrameResult&)>& sink,
-                              std::stop_token stop) const {
-  Run run(segmenter_, source, sink, config_.frames_in_flight, std::move(stop));
+                              std::stop_token stop, LiveStats* live) const {
+  Run run(segmenter_, source, sink, config_.frames_in_flight, std::move(stop), live);
   return run.execute();
 }
 

@@ -1,88 +1,21 @@
-// lccp_stream.Replay and lccp_stream.Live: the library's Pipeline over a source
-// opened by open_source, run on a background thread; Python iterates over the
-// frames it hands over.
+// lccp_stream.Replay and lccp_stream.Live: the library's BackgroundStream over
+// a source opened by open_source; Python iterates over the frames it hands over.
 //
-//   background std::thread: Pipeline::run(source, sink) in the task arena
-//       sink (a TBB thread) -> FrameQueue (a few frames) -> __next__ (Python) -> Frame
+//   BackgroundStream (its thread, its hand-off queue) -> __next__ (Python) -> Frame
 //
-// One std::stop_source stops the run (close(), Ctrl-C, the end of a with
-// block, the object's destruction); the queue's waits watch it, so the sink
-// never blocks a stopping pipeline.
+// close(), Ctrl-C, the end of a with block and the object's destruction stop
+// the stream (BackgroundStream::stop); waits release the GIL.
 #include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <mutex>
-#include <stop_token>
-#include <thread>
 
 #include "bindings.hpp"
 #include "lccp/capture/open_source.hpp"
-#include "lccp/pipeline/pipeline.hpp"
+#include "lccp/pipeline/background_stream.hpp"
 
 namespace lccp::python {
 namespace {
 
 using namespace std::chrono_literals;
-
-// The frames the sink handed over and Python has not taken yet; at most
-// `capacity`, so a slow consumer holds back a lossless (recording) pipeline
-// instead of piling up frames. A live source drops frames at admission itself.
-class FrameQueue {
- public:
-  enum class Status { frame, waiting, ended };
-
-  explicit FrameQueue(std::size_t capacity) : capacity_(capacity) {}
-
-  // Waits for room; once `stop` is requested the frame is dropped (nobody will take it).
-  void push(FrameResult& result, std::stop_token stop) {
-    std::unique_lock lock(mutex_);
-    changed_.wait(lock, stop, [&] { return items_.size() < capacity_; });
-    if (stop.stop_requested()) return;
-    items_.push_back(std::move(result));
-    changed_.notify_all();
-  }
-
-  // The next frame into `out` (Status::frame), or, after waiting up to
-  // `timeout`, Status::waiting, or Status::ended once the run ended and every
-  // frame was taken.
-  Status pop(FrameResult& out, std::chrono::milliseconds timeout) {
-    std::unique_lock lock(mutex_);
-    changed_.wait_for(lock, timeout, [&] { return !items_.empty() || ended_; });
-    if (items_.empty()) return ended_ ? Status::ended : Status::waiting;
-    out = std::move(items_.front());
-    items_.pop_front();
-    changed_.notify_all();
-    return Status::frame;
-  }
-
-  // The run is over; `error` is why it ended early (empty: the source ended or a stop).
-  void end(std::string error) {
-    const std::lock_guard lock(mutex_);
-    ended_ = true;
-    error_ = std::move(error);
-    changed_.notify_all();
-  }
-
-  // Drops the frames nobody will take.
-  void clear() {
-    const std::lock_guard lock(mutex_);
-    items_.clear();
-    changed_.notify_all();
-  }
-
-  std::string error() {
-    const std::lock_guard lock(mutex_);
-    return error_;
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable_any changed_;
-  std::deque<FrameResult> items_;
-  std::size_t capacity_;
-  bool ended_ = false;
-  std::string error_;
-};
 
 // What Python sees of a FrameResult: a Segmentation (labels, objects,
 // segments, support_plane) with the frame's own fields.
@@ -108,70 +41,48 @@ PyFrame to_python(FrameResult&& result) {
   return frame;
 }
 
-// One run of the pipeline over one source, on a thread of its own.
-// `frames`: the run stops once that many frames were handed to Python (a
-// live source drops frames at admission, so its own count would yield fewer).
+// One BackgroundStream over one source. `frames`: the stream is stopped once
+// that many frames were handed to Python (a live source drops frames at
+// admission, so its own count would yield fewer).
 class Stream {
  public:
   Stream(std::unique_ptr<FrameSource> source, const SceneConfig& config, unsigned inflight,
          std::optional<int> threads, std::optional<std::uint64_t> frames)
-      : segmenter_(config), pipeline_(segmenter_, PipelineConfig{inflight}), source_(std::move(source)),
-        threads_(threads), frames_to_yield_(frames), thread_([this] { run(); }) {}
-  Stream(const Stream&) = delete;
-  Stream& operator=(const Stream&) = delete;
+      : source_(std::move(source)),
+        stream_(config, *source_, StreamConfig{inflight, threads.value_or(0), 2}),
+        frames_to_yield_(frames) {}
   ~Stream() { close(); }
 
   PyFrame next();
   void close();
 
  private:
-  void run();
   [[noreturn]] void finish();
 
-  SceneSegmenter segmenter_;
-  Pipeline pipeline_;  // refers to segmenter_
   std::unique_ptr<FrameSource> source_;
-  std::optional<int> threads_;
+  BackgroundStream stream_;  // runs on *source_
   std::optional<std::uint64_t> frames_to_yield_;
   std::uint64_t frames_yielded_ = 0;
-  FrameQueue queue_{2};
-  std::stop_source stop_;
-  std::mutex close_mutex_;
   bool error_raised_ = false;
-  std::thread thread_;  // last: it starts once everything it uses exists
 };
 
-void Stream::run() {
-  std::string error;
-  try {
-    const std::stop_token stop = stop_.get_token();
-    const PipelineOutcome outcome = with_threads(threads_, [&] {
-      return pipeline_.run(*source_, [&](FrameResult& result) { queue_.push(result, stop); }, stop);
-    });
-    error = outcome.error;
-  } catch (const std::exception& e) {  // nothing may escape a thread
-    error = e.what();
-  }
-  queue_.end(std::move(error));
-}
-
 // Waits with the GIL released, looking for Ctrl-C every 100 ms. With the last
-// of `frames` the run is asked to stop (the frames in flight are dropped).
+// of `frames` the stream is asked to stop (the frames in flight are dropped).
 PyFrame Stream::next() {
   if (frames_to_yield_ && frames_yielded_ == *frames_to_yield_) finish();
   FrameResult result;
   for (;;) {
-    FrameQueue::Status status;
+    BackgroundStream::Next status;
     {
       py::gil_scoped_release release;
-      status = queue_.pop(result, 100ms);
+      status = stream_.next(result, 100ms);
     }
-    if (status == FrameQueue::Status::frame) {
-      if (frames_to_yield_ && ++frames_yielded_ == *frames_to_yield_) stop_.request_stop();
+    if (status == BackgroundStream::Next::frame) {
+      if (frames_to_yield_ && ++frames_yielded_ == *frames_to_yield_) stream_.request_stop();
       return to_python(std::move(result));
     }
-    if (status == FrameQueue::Status::ended) finish();
-    if (PyErr_CheckSignals() != 0) {  // e.g. KeyboardInterrupt: stop the run, then raise it
+    if (status == BackgroundStream::Next::ended) finish();
+    if (PyErr_CheckSignals() != 0) {  // e.g. KeyboardInterrupt: stop the stream, then raise it
       close();
       throw py::error_already_set();
     }
@@ -181,7 +92,7 @@ PyFrame Stream::next() {
 // Every frame was taken: StopIteration, or once RuntimeError if the run failed.
 void Stream::finish() {
   close();
-  const std::string error = queue_.error();
+  const std::string error = stream_.stop().error;
   if (!error.empty() && !error_raised_) {
     error_raised_ = true;
     throw std::runtime_error(error);
@@ -189,13 +100,10 @@ void Stream::finish() {
   throw py::stop_iteration();
 }
 
-// Stops the run: frames in flight are finished and dropped, the thread joined.
+// Stops the stream: frames in flight are finished and dropped, its thread joined.
 void Stream::close() {
-  py::gil_scoped_release release;  // the thread may take a moment to finish its frames
-  const std::lock_guard lock(close_mutex_);
-  stop_.request_stop();  // wakes a sink waiting for room; it drops its frame
-  if (thread_.joinable()) thread_.join();
-  queue_.clear();
+  py::gil_scoped_release release;  // the stream may take a moment to finish its frames
+  stream_.stop();
 }
 
 // Replay and Live are two faces of Stream with their own constructors.

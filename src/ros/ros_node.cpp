@@ -249,6 +249,7 @@ diagnostic_msgs::DiagnosticStatus diagnostic_status(const NodeDiagnostics& diagn
   status.level = diagnostic_msgs::DiagnosticStatus::OK;
   status.message = std::to_string(diagnostics.window_frames) + " frames in the last second";
   status.values = {key_value("frames_received", std::to_string(diagnostics.received)),
+                   key_value("sensor_gaps", std::to_string(diagnostics.gaps)),
                    key_value("frames_completed", std::to_string(diagnostics.completed)),
                    key_value("frames_failed", std::to_string(diagnostics.failed)),
                    key_value("frames_dropped", std::to_string(diagnostics.dropped)),

@@ -1,63 +1,23 @@
-// The ROS-free half of the lccp_ros node (C++20): a live queue source, the
-// library's Pipeline on its own thread, results as plain data.
+// The ROS-free half of the lccp_ros node (C++20): the library's PushSource and
+// BackgroundStream, results as plain data.
 #include "segmentation_node.hpp"
 
 #include <algorithm>
-#include <condition_variable>
 #include <cstring>
-#include <deque>
 #include <map>
 #include <mutex>
-#include <optional>
 #include <sstream>
-#include <stop_token>
-#include <thread>
-
-#include <tbb/task_arena.h>
 
 #include "frame_conversion.hpp"
 #include "lccp/error.hpp"
 #include "lccp/io/cloud_io.hpp"
 #include "lccp/io/config_file.hpp"
 #include "lccp/io/segments_json.hpp"
-#include "lccp/pipeline/pipeline.hpp"
+#include "lccp/pipeline/background_stream.hpp"
+#include "lccp/pipeline/push_source.hpp"
 
 namespace lccp::ros_node {
 namespace {
-
-// Frames from the subscriber callbacks, at most kQueueFrames waiting: a newer
-// frame replaces the oldest (its index is then missing, and the pipeline counts
-// it as dropped). Live, so the pipeline's admission drops the oldest too.
-class FrameQueue final : public FrameSource {
- public:
-  static constexpr std::size_t kQueueFrames = 1;
-
-  void push(Frame frame) {
-    {
-      const std::lock_guard lock(mutex_);
-      if (queue_.size() >= kQueueFrames) queue_.pop_front();
-      queue_.push_back(std::move(frame));
-    }
-    ready_.notify_one();
-  }
-
-  std::optional<Frame> next(std::stop_token stop) override {
-    std::unique_lock lock(mutex_);
-    ready_.wait(lock, stop, [&] { return !queue_.empty(); });
-    if (queue_.empty()) return std::nullopt;
-    Frame frame = std::move(queue_.front());
-    queue_.pop_front();
-    return frame;
-  }
-
-  std::optional<std::uint64_t> frame_count() const override { return std::nullopt; }
-  bool is_live() const override { return true; }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable_any ready_;
-  std::deque<Frame> queue_;
-};
 
 SegmentBox box_of(const SegmentGeometry& segment, bool is_part, std::uint32_t object_id) {
   SegmentBox box;
@@ -149,64 +109,41 @@ struct SegmentationNode::Impl {
   };
 
   Impl(const NodeSettings& settings, Publish publish_to)
-      : arena(settings.threads > 0 ? static_cast<int>(settings.threads) : tbb::task_arena::automatic),
-        segmenter(resolve_config(settings.config, settings.settings)),
-        pipeline(segmenter, PipelineConfig{settings.frames_in_flight}),
-        publish(std::move(publish_to)) {}
+      : publish(std::move(publish_to)),
+        stream(resolve_config(settings.config, settings.settings), source,
+               StreamConfig{settings.frames_in_flight, static_cast<int>(settings.threads)},
+               [this](FrameResult& result) { deliver(result); }) {}
 
   void push(Frame frame, Header header) {
-    {
-      const std::lock_guard lock(mutex);
-      frame.index = received++;
-      headers.emplace(frame.index, std::move(header));
-    }
-    queue.push(std::move(frame));
+    const std::lock_guard lock(mutex);  // the index and its header together
+    headers.emplace(source.push(std::move(frame)), std::move(header));
   }
 
   void deliver(FrameResult& result) {
     FrameOutput out = output_of(result);
     {
       const std::lock_guard lock(mutex);
-      // Frames before this one that never came: dropped by the queue or the pipeline.
-      dropped += result.frame.index - next_expected;
-      next_expected = result.frame.index + 1;
       auto header = headers.find(result.frame.index);
       if (header != headers.end()) {
         out.stamp_ns = header->second.stamp_ns;
         out.frame_id = std::move(header->second.frame_id);
       }
-      headers.erase(headers.begin(), headers.upper_bound(result.frame.index));
-      (result.error.empty() ? completed : failed) += 1;
+      headers.erase(headers.begin(), headers.upper_bound(result.frame.index));  // these frames are gone
       window.push_back({result.segmentation.times, result.back_projection_ms, result.end_to_end_ms()});
     }
     publish(std::move(out));
   }
 
-  tbb::task_arena arena;  // the pipeline's threads: a nodelet shares its process, so no global setting
-  SceneSegmenter segmenter;
-  Pipeline pipeline;
   Publish publish;
-  FrameQueue queue;
-  std::stop_source stop;
-  PipelineOutcome outcome;
-  std::thread thread;
-
-  std::mutex mutex;  // guards what follows
+  PushSource source;         // frames from the subscriber callbacks
+  std::mutex mutex;          // guards what follows
   std::map<std::uint64_t, Header> headers;
-  std::uint64_t received = 0, completed = 0, failed = 0, dropped = 0, next_expected = 0;
   std::vector<LatencySample> window;
+  BackgroundStream stream;   // last: it starts once everything it uses exists
 };
 
 SegmentationNode::SegmentationNode(const NodeSettings& settings, Publish publish)
-    : impl_(std::make_unique<Impl>(settings, std::move(publish))) {
-  Impl& impl = *impl_;
-  impl.thread = std::thread([&impl] {
-    impl.arena.execute([&impl] {
-      impl.outcome = impl.pipeline.run(impl.queue, [&impl](FrameResult& result) { impl.deliver(result); },
-                                       impl.stop.get_token());
-    });
-  });
-}
+    : impl_(std::make_unique<Impl>(settings, std::move(publish))) {}
 
 SegmentationNode::~SegmentationNode() { stop(); }
 
@@ -222,26 +159,24 @@ void SegmentationNode::push(ros_bridge::CloudMessage&& cloud) {
 
 NodeDiagnostics SegmentationNode::take_diagnostics() {
   std::vector<LatencySample> window;
-  NodeDiagnostics diagnostics;
   {
     const std::lock_guard lock(impl_->mutex);
     window.swap(impl_->window);
-    diagnostics = {impl_->received, impl_->completed, impl_->failed, impl_->dropped, window.size(), {}};
   }
-  diagnostics.latency = median_latencies(window);
-  return diagnostics;
+  const PipelineStats stats = impl_->stream.stats();
+  return {stats.frames_received, stats.sensor_gaps,    stats.frames_completed,
+          stats.frames_failed,   stats.frames_dropped, window.size(),
+          median_latencies(window)};
 }
 
 std::string SegmentationNode::stop() {
-  if (!impl_->thread.joinable()) return {};
-  impl_->stop.request_stop();
-  impl_->thread.join();
-  const PipelineStats& stats = impl_->outcome.stats;
+  const PipelineOutcome& outcome = impl_->stream.stop();
+  const PipelineStats& stats = outcome.stats;
   std::ostringstream line;
   line << "frames " << stats.frames_received << " received + " << stats.sensor_gaps << " gaps = "
        << stats.frames_completed << " completed + " << stats.frames_failed << " failed + " << stats.frames_dropped
        << " dropped";
-  if (!impl_->outcome.error.empty()) line << "; error: " << impl_->outcome.error;
+  if (!outcome.error.empty()) line << "; error: " << outcome.error;
   return line.str();
 }
 

@@ -1,9 +1,8 @@
 #pragma once
 // The ROS-free half of the lccp_ros node (C++20 inside, this header C++17 too):
-// frames pushed by the subscriber callbacks go through a small queue (a live
-// FrameSource) into the library's Pipeline on its own thread; every result comes
-// back as plain data for the ROS half (ros_node.cpp) to publish. A ROS 2 adapter
-// would use this class unchanged.
+// frames pushed by the subscriber callbacks go into the library's PushSource and
+// through its BackgroundStream; every result comes back as plain data for the
+// ROS half (ros_node.cpp) to publish. A ROS 2 adapter would use this class unchanged.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -51,11 +50,14 @@ struct StageLatency {
   double p50_ms = 0;
 };
 
+// The stream's PipelineStats as they stand (see lccp/pipeline/pipeline.hpp;
+// this header stays C++17, so the counts are copied out) and the latencies.
 struct NodeDiagnostics {
-  std::uint64_t received = 0;   // frames pushed
+  std::uint64_t received = 0;   // frames the pipeline took
+  std::uint64_t gaps = 0;       // frames pushed out before it took them (a newer message came first)
   std::uint64_t completed = 0;  // published with labels
   std::uint64_t failed = 0;     // published with a stage error
-  std::uint64_t dropped = 0;    // never published: the queue or the pipeline had no room
+  std::uint64_t dropped = 0;    // never published: the gaps and the frames the pipeline had no room for
   std::uint64_t window_frames = 0;    // frames the latencies are taken over (the last second)
   std::vector<StageLatency> latency;  // p50 over the window
 };
@@ -68,7 +70,7 @@ std::vector<std::string> config_parameter_names(const std::string& config);
 class SegmentationNode {
  public:
   using Publish = std::function<void(FrameOutput&&)>;
-  // Starts the pipeline thread. Throws lccp::Error (one line) for a bad config,
+  // Starts the stream. Throws lccp::Error (one line) for a bad config,
   // setting or frame count. `publish` is called in frame order, one call at a time.
   SegmentationNode(const NodeSettings& settings, Publish publish);
   ~SegmentationNode();  // stops: the frames in flight are finished and published
@@ -79,7 +81,7 @@ class SegmentationNode {
   void push(ros_bridge::CloudMessage&& cloud);
   // Counts since the start; latencies over the last second (and forgets them).
   NodeDiagnostics take_diagnostics();
-  // The pipeline's own counts, once stopped (for the log): "frames R received ...".
+  // Stops the stream; its counts (for the log): "frames R received ...".
   std::string stop();
 
  private:

@@ -8,6 +8,7 @@
 //          -> sink -> the slot goes back to admission
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <stop_token>
 #include <string>
 
@@ -65,6 +66,27 @@ struct PipelineStats {
   }
 };
 
+// A run's PipelineStats as they stand, read from any thread while it runs
+// (diagnostics). Frames in flight are in none of the counts on the right yet,
+// and a gap counts as dropped when the frame after it is taken; the counts add
+// up once the run has ended.
+class LiveStats {
+ public:
+  PipelineStats snapshot() const {
+    const std::lock_guard lock(mutex_);
+    return stats_;
+  }
+  template <typename Update>
+  void update(Update&& update) {
+    const std::lock_guard lock(mutex_);
+    update(stats_);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  PipelineStats stats_;
+};
+
 // How a run ended: its counts, and the error that ended it (the source's, e.g.
 // "device ... disconnected", or the sink's), empty if the source ended or a
 // stop was requested.
@@ -84,8 +106,9 @@ class Pipeline {
   // (FrameResult::error). After a stop or a source error no frame is taken,
   // and the frames in flight are finished and handed to the sink. After a
   // sink error the frames in flight are finished but not handed over.
+  // `live`, if given, is kept current as frames are taken and handed over.
   PipelineOutcome run(FrameSource& source, const std::function<void(FrameResult&)>& sink,
-                      std::stop_token stop = {}) const;
+                      std::stop_token stop = {}, LiveStats* live = nullptr) const;
 
  private:
   const SceneSegmenter& segmenter_;
