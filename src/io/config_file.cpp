@@ -346,4 +346,12 @@ std::string describe_config(const SceneConfig& config) {
   return text;
 }
 
+std::vector<std::string> config_key_names(const SceneConfig& config) {
+  std::vector<std::string> names;
+  for (const Key& key : keys()) names.emplace_back(key.name);
+  if (!config.parts) return names;
+  for (const Key& key : keys()) names.push_back("parts." + std::string(key.name));
+  return names;
+}
+
 }  // namespace lccp

@@ -92,12 +92,9 @@ std::vector<StageLatency> median_latencies(const std::vector<LatencySample>& sam
 }  // namespace
 
 std::vector<std::string> config_parameter_names(const std::string& config) {
-  std::vector<std::string> names;
-  std::istringstream lines(describe_config(load_preset_or_file(config)));
-  for (std::string line; std::getline(lines, line);) {
-    std::string name = line.substr(0, line.find(':'));
+  std::vector<std::string> names = config_key_names(load_preset_or_file(config));
+  for (std::string& name : names) {
     if (name.starts_with("parts.")) name.replace(0, 6, "parts/");
-    names.push_back(name);
   }
   return names;
 }

@@ -43,4 +43,8 @@ void apply_setting(SceneConfig& config, const std::string& key_equals_value);
 // second level's keys prefixed "parts.".
 std::string describe_config(const SceneConfig& config);
 
+// The keys of `config` in describe_config's order: the first level's, then the
+// second level's (if any) prefixed "parts.".
+std::vector<std::string> config_key_names(const SceneConfig& config);
+
 }  // namespace lccp
