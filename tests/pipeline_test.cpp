@@ -66,9 +66,11 @@ std::vector<Labels> serial_stream_labels(const std::vector<const PointCloud*>& c
   std::vector<Labels> labels;
   for (const PointCloud* cloud : clouds) {
     SceneWork work(*cloud);
-    work.tracker = &tracker;
-    for (const StageInfo& stage : kStages) segmenter().run_stage(stage.stage, work);
-    labels.push_back(std::move(work.result.labels));
+    for (const StageInfo& stage : kStages) {
+      if (stage.stage != Stage::ids) segmenter().run_stage(stage.stage, work);
+    }
+    segmenter().assign_ids(work, tracker);
+    labels.push_back(work.take_result().labels);
   }
   return labels;
 }

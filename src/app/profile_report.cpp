@@ -364,10 +364,10 @@ svg text.p50-label{fill:#1f77b4}svg text.p99-label{fill:#c45f00}svg text.period-
 }  // namespace
 
 // "voxelize + normals": the stages a pipeline node runs.
-std::string node_label(unsigned node) {
+std::string node_label(const PipelineNode& node) {
   std::string label;
   for (const StageInfo& info : kStages) {
-    if (info.node == node) label += (label.empty() ? "" : " + ") + std::string(info.name);
+    if (node.contains(info.stage)) label += (label.empty() ? "" : " + ") + std::string(info.name);
   }
   return label;
 }
@@ -376,11 +376,11 @@ const std::vector<LatencyRow>& latency_rows() {
   static const std::vector<LatencyRow> rows = [] {
     std::vector<LatencyRow> all{
         {"back_projection", "back-projection", Kind::node, [](const FrameRecord& f) { return f.back_projection_ms; }}};
-    for (unsigned node = 0; node < kPipelineNodes.size(); ++node) {
-      all.push_back({std::string(kPipelineNodes[node]), node_label(node), Kind::node,
-                     [node](const FrameRecord& f) { return f.stages.node_ms(node); }});
+    for (const PipelineNode& node : kPipelineNodes) {
+      all.push_back({std::string(node.name), node_label(node), Kind::node,
+                     [&node](const FrameRecord& f) { return node.ms(f.stages); }});
       for (const StageInfo& info : kStages) {
-        if (info.node != node) continue;
+        if (!node.contains(info.stage)) continue;
         all.push_back({std::string(info.name), std::string(info.name), Kind::stage,
                        [stage = info.stage](const FrameRecord& f) { return f.stages[stage]; }});
       }

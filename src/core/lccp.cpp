@@ -1,7 +1,5 @@
 #include "lccp/core/lccp.hpp"
 
-#include <chrono>
-
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
 #include "lccp/core/normals.hpp"
@@ -47,23 +45,6 @@ void remove_support(SegmentationWork& w, const SupportPlaneConfig& config) {
   leave_out_points(w, [&](std::size_t i) { return w.support->on_plane[i] != 0; });
 }
 
-// Stage 0: what is not segmented, as the config asks: the points outside the
-// region of interest, then the support plane's among the rest.
-void leave_out(SegmentationWork& w, const LccpConfig& config) {
-  keep_region(w, config.region);
-  remove_support(w, config.support);
-}
-
-// Stage 8 (A.4): small segments merged, segments numbered 1..K by size, and
-// every point labelled through its voxel's supervoxel.
-void filter_and_label(SegmentationWork& w, std::uint32_t n_filter) {
-  merge_small_segments(w.segment_of_supervoxel, w.edges, n_filter);
-  w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
-  w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel);
-  w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
-  w.result.supervoxel_count = static_cast<std::uint32_t>(w.supervoxels.size());
-}
-
 }  // namespace
 
 LccpSegmenter::LccpSegmenter(const LccpConfig& config) : config_(config) { validate(config_); }
@@ -72,32 +53,76 @@ SegmentationResult LccpSegmenter::segment(const CloudView& cloud) const { return
 
 SegmentationWork LccpSegmenter::run(const CloudView& cloud) const {
   SegmentationWork work(cloud);
-  for (std::size_t s = 0; s < kLccpStageCount; ++s) run_stage(kStages[s].stage, work);
+  segment(work);
   return work;
 }
 
-void LccpSegmenter::run_stage(Stage stage, SegmentationWork& w) const {
-  const auto start = std::chrono::steady_clock::now();
-  const float v = config_.voxels.voxel_size_m;
-  const SupervoxelConfig& sv = config_.supervoxels;
-  switch (stage) {
-    case Stage::support: leave_out(w, config_); break;
-    case Stage::voxelize: w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip); break;
-    case Stage::normals: w.normals = estimate_voxel_normals(w.grid, config_.normals); break;
-    case Stage::seeds: w.seeds = select_seeds(w.grid, sv, v); break;
-    case Stage::growth: w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, config_); break;
-    case Stage::adjacency: w.edges = supervoxel_adjacency(w.grid, w.supervoxels); break;
-    case Stage::classify:
-      w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity,
-                                PatchSizes{v, sv.seed_size_m});
-      break;
-    case Stage::components: w.segment_of_supervoxel = convex_components(w.supervoxels.size(), w.edges, w.convex); break;
-    case Stage::filter: filter_and_label(w, config_.filter.n_filter_supervoxels); break;
-    case Stage::parts:
-    case Stage::geometry:
-    case Stage::ids: return;  // the scene's (src/objects/scene.cpp)
-  }
-  w.result.times[stage] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+// The paper's method, one line per stage (Sec. II.B, Appendix A).
+void LccpSegmenter::segment(SegmentationWork& w) const {
+  leave_out(w);
+  build_voxels(w);
+  compute_normals(w);
+  place_seeds(w);
+  grow_patches(w);
+  build_graph(w);
+  classify_convexity(w);
+  merge_convex(w);
+  filter_small(w);
+}
+
+// Stage 0: what is not segmented, as the config asks: the points outside the
+// region of interest, then the support plane's among the rest.
+void LccpSegmenter::leave_out(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::support);
+  keep_region(w, config_.region);
+  remove_support(w, config_.support);
+}
+
+void LccpSegmenter::build_voxels(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::voxelize);
+  w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip);
+}
+
+void LccpSegmenter::compute_normals(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::normals);
+  w.normals = estimate_voxel_normals(w.grid, config_.normals);
+}
+
+void LccpSegmenter::place_seeds(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::seeds);
+  w.seeds = select_seeds(w.grid, config_.supervoxels, config_.voxels.voxel_size_m);
+}
+
+void LccpSegmenter::grow_patches(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::growth);
+  w.supervoxels = grow_supervoxels(w.grid, w.normals, w.seeds, config_);
+}
+
+void LccpSegmenter::build_graph(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::adjacency);
+  w.edges = supervoxel_adjacency(w.grid, w.supervoxels);
+}
+
+void LccpSegmenter::classify_convexity(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::classify);
+  const PatchSizes sizes{config_.voxels.voxel_size_m, config_.supervoxels.seed_size_m};
+  w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity, sizes);
+}
+
+void LccpSegmenter::merge_convex(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::components);
+  w.segment_of_supervoxel = convex_components(w.supervoxels.size(), w.edges, w.convex);
+}
+
+// Stage 8 (A.4): small segments merged, segments numbered 1..K by size, and
+// every point labelled through its voxel's supervoxel.
+void LccpSegmenter::filter_small(SegmentationWork& w) const {
+  const StageTimer timer(w.result.times, Stage::filter);
+  merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels);
+  w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
+  w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel);
+  w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
+  w.result.supervoxel_count = static_cast<std::uint32_t>(w.supervoxels.size());
 }
 
 }  // namespace lccp

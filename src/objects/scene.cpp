@@ -1,7 +1,5 @@
 #include "lccp/objects/scene.hpp"
 
-#include <chrono>
-
 #include <tbb/parallel_for.h>
 
 #include "lccp/error.hpp"
@@ -109,29 +107,41 @@ SegmentTracker SceneSegmenter::new_tracker() const {
   return SegmentTracker(config_.objects.support.enabled ? kSupportId + 1 : 1);
 }
 
+// The robot application on one frame (Sec. III.C, Fig. 5), one line per stage.
 SceneSegmentation SceneSegmenter::segment(const CloudView& cloud) const {
-  SceneWork work(cloud);
-  for (const StageInfo& stage : kStages) run_stage(stage.stage, work);
-  return std::move(work.result);
+  SceneWork w(cloud);
+  objects_.segment(w.objects);  // stages 0-8: the objects (Fig. 5 B)
+  partition_objects(w);         // 9: their parts (Fig. 5 C)
+  describe(w);                  // 10: geometry
+  SegmentTracker tracker = new_tracker();
+  assign_ids(w, tracker);       // 11: ids in label order
+  return w.take_result();
 }
 
 void SceneSegmenter::run_stage(Stage stage, SceneWork& w) const {
-  const auto start = std::chrono::steady_clock::now();
   switch (stage) {
-    case Stage::parts:
-      drop_small_objects(w.objects, config_.objects.filter.min_object_points);
-      partition_objects(w);
-      break;
-    case Stage::geometry: describe(w); break;
-    case Stage::ids: assign_ids(w); break;
-    default: objects_.run_stage(stage, w.objects); break;  // stages 0-8: one level of LCCP
+    case Stage::support: return objects_.leave_out(w.objects);
+    case Stage::voxelize: return objects_.build_voxels(w.objects);
+    case Stage::normals: return objects_.compute_normals(w.objects);
+    case Stage::seeds: return objects_.place_seeds(w.objects);
+    case Stage::growth: return objects_.grow_patches(w.objects);
+    case Stage::adjacency: return objects_.build_graph(w.objects);
+    case Stage::classify: return objects_.classify_convexity(w.objects);
+    case Stage::components: return objects_.merge_convex(w.objects);
+    case Stage::filter: return objects_.filter_small(w.objects);
+    case Stage::parts: return partition_objects(w);
+    case Stage::geometry: return describe(w);
+    case Stage::ids: break;
   }
-  w.result.times[stage] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  throw Error("stage ids needs the stream's tracker: SceneSegmenter::assign_ids");
 }
 
-// Stage 9 (Fig. 5 C): every object segmented on its own with the part-level
-// config, in the binning its points had at the object level.
+// Stage 9 (Fig. 5 C): the objects of fewer than min_object_points points
+// dropped, then every object segmented on its own with the part-level config,
+// in the binning its points had at the object level.
 void SceneSegmenter::partition_objects(SceneWork& w) const {
+  const StageTimer timer(w.objects.result.times, Stage::parts);
+  drop_small_objects(w.objects, config_.objects.filter.min_object_points);
   if (!config_.parts) return;
   LccpConfig config = *config_.parts;
   if (config.voxels.binning == Binning::automatic) config.voxels.binning = w.objects.grid.binning;
@@ -142,12 +152,13 @@ void SceneSegmenter::partition_objects(SceneWork& w) const {
   tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t k) {
     w.parts[k] = std::make_unique<ObjectParts>(gather(w.objects.cloud, members[k]));
     w.parts[k]->indices = std::move(members[k]);
-    for (std::size_t s = 0; s < kLccpStageCount; ++s) segmenter.run_stage(kStages[s].stage, w.parts[k]->work);
+    segmenter.segment(w.parts[k]->work);
   });
 }
 
 // Stage 10: the geometry of every object and of its parts, ids still dense labels.
 void SceneSegmenter::describe(SceneWork& w) const {
+  const StageTimer timer(w.objects.result.times, Stage::geometry);
   const std::optional<Plane> plane =
       w.objects.support ? std::optional<Plane>(w.objects.support->plane) : std::nullopt;
   std::vector<SegmentGeometry> objects = describe_segments(w.objects, plane);
@@ -159,9 +170,8 @@ void SceneSegmenter::describe(SceneWork& w) const {
 }
 
 // Stage 11: ids matched to the previous frame's; labels and geometry renamed to them.
-void SceneSegmenter::assign_ids(SceneWork& w) const {
-  SegmentTracker fresh = new_tracker();
-  SegmentTracker& tracker = w.tracker ? *w.tracker : fresh;
+void SceneSegmenter::assign_ids(SceneWork& w, SegmentTracker& tracker) const {
+  const StageTimer timer(w.objects.result.times, Stage::ids);
   const std::vector<std::uint32_t> offsets = part_offsets(w.parts);
   const Labels parts = config_.parts ? dense_part_labels(w, offsets) : Labels{};
   const SegmentationResult& level1 = w.objects.result;

@@ -2,8 +2,8 @@
 //
 //   capture thread --(admission: K slots)--> entry (async_node gateway)
 //     -> back-projection -> one node per kPipelineNodes entry but the last
-//        (kStages grouped by StageInfo::node) -> sequencer
-//     -> deliver (serial, in frame order: the last node's stages, stable ids, then the sink)
+//        (consecutive stages of kStages) -> sequencer
+//     -> deliver (serial, in frame order: stable ids with the run's tracker, then the sink)
 //     -> the slot goes back to admission
 //
 // The source is read on a thread of its own, never on a TBB thread: a blocking
@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <thread>
 #include <vector>
 
@@ -89,7 +90,7 @@ Message back_project_frame(const Message& message) {
 // frame has no segment: every point unlabelled, the stage times kept.
 void finish_frame(FrameInFlight& f) {
   SceneSegmentation& segmentation = f.result.segmentation;
-  if (f.work) segmentation = std::move(f.work->result);
+  if (f.work) segmentation = f.work->take_result();
   f.work.reset();
   if (!f.result.error.empty()) {
     const StageTimes times = segmentation.times;
@@ -121,14 +122,14 @@ class Run {
   PipelineOutcome execute();
 
  private:
-  Message run_node(unsigned node, const Message& message) const;
+  Message run_node(const PipelineNode& node, const Message& message) const;
   void capture_frames();
   void take(Frame frame);
   void deliver(const Message& message);
   void fail(std::string error);
 
   const SceneSegmenter& segmenter_;
-  SegmentTracker tracker_;  // deliver_ only
+  SegmentTracker tracker_;  // the ids stage's, in deliver_ only
   FrameSource& source_;
   const std::function<void(FrameResult&)>& sink_;
   const DropPolicy policy_;
@@ -180,9 +181,9 @@ Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::functi
       stats_(live ? *live : own_stats_) {
   flow::make_edge(entry_, back_projection_);
   flow::sender<Message>* previous = &back_projection_;
-  for (unsigned node = 0; node + 1 < kPipelineNodes.size(); ++node) {
+  for (const PipelineNode& node : std::span(kPipelineNodes).first(kPipelineNodes.size() - 1)) {
     stage_nodes_.push_back(std::make_unique<Node>(
-        graph_, flow::unlimited, [this, node](const Message& message) { return run_node(node, message); }));
+        graph_, flow::unlimited, [this, &node](const Message& message) { return run_node(node, message); }));
     flow::make_edge(*previous, *stage_nodes_.back());
     previous = stage_nodes_.back().get();
   }
@@ -190,10 +191,10 @@ Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::functi
   flow::make_edge(in_order_, deliver_);
 }
 
-Message Run::run_node(unsigned node, const Message& message) const {
+Message Run::run_node(const PipelineNode& node, const Message& message) const {
   FrameInFlight& f = *message;
   for (const StageInfo& info : kStages) {
-    if (info.node == node) run_guarded(f, [&] { segmenter_.run_stage(info.stage, *f.work); });
+    if (node.contains(info.stage)) run_guarded(f, [&] { segmenter_.run_stage(info.stage, *f.work); });
   }
   return message;
 }
@@ -238,8 +239,8 @@ void Run::take(Frame frame) {
 
 void Run::deliver(const Message& message) {
   FrameInFlight& f = *message;
-  if (f.work) f.work->tracker = source_.is_stream() ? &tracker_ : nullptr;  // null: ids 1..K of its own
-  run_node(kPipelineNodes.size() - 1, message);
+  SegmentTracker own = segmenter_.new_tracker();  // a batch of files: ids 1..K per frame
+  run_guarded(f, [&] { segmenter_.assign_ids(*f.work, source_.is_stream() ? tracker_ : own); });
   finish_frame(f);
   FrameResult& result = f.result;
   const bool stage_failed = !result.error.empty();  // before the sink, which may move the result

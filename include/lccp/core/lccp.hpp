@@ -1,12 +1,12 @@
 #pragma once
-// The whole method on one cloud, stage by stage (lccp/core/stages.hpp).
+// The whole method on one cloud, stage by stage (lccp/stages.hpp).
 #include <cstdint>
 
 #include "lccp/cloud.hpp"
 #include "lccp/config.hpp"
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/normals.hpp"
-#include "lccp/core/stages.hpp"
+#include "lccp/stages.hpp"
 #include "lccp/core/supervoxels.hpp"
 #include "lccp/core/support_plane.hpp"
 #include "lccp/core/voxel_grid.hpp"
@@ -40,6 +40,9 @@ struct SegmentationWork {
   SegmentationResult result;                           // filter (labels, counts); times from every stage
 };
 
+// The method's stages on one cloud as named steps, each reading what the
+// earlier ones left in a SegmentationWork and timing itself (StageTimer into
+// work.result.times). segment() runs them in the paper's order.
 class LccpSegmenter {
  public:
   // Throws lccp::Error if the config is out of range.
@@ -57,10 +60,18 @@ class LccpSegmenter {
   // for what is computed from it (per-segment geometry).
   SegmentationWork run(const CloudView& cloud) const;
 
-  // Runs one of stages 0-8 on `work` and adds its time to work.result.times
-  // (the later stages are the scene's: lccp/objects/scene.hpp). Stages run in
-  // kStages order; segment() is stages 0-8 in turn.
-  void run_stage(Stage stage, SegmentationWork& work) const;
+  // Stages 0-8 on `work`, one after the other.
+  void segment(SegmentationWork& work) const;
+
+  void leave_out(SegmentationWork& work) const;           // 0. region of interest, support plane (Sec. III.C)
+  void build_voxels(SegmentationWork& work) const;        // 1. voxel grid, 26-adjacency (A.1)
+  void compute_normals(SegmentationWork& work) const;     // 2. one normal per voxel
+  void place_seeds(SegmentationWork& work) const;         // 3. seeds on a grid of R_seed
+  void grow_patches(SegmentationWork& work) const;        // 4. supervoxels
+  void build_graph(SegmentationWork& work) const;         // 5. supervoxel adjacency graph (A.1)
+  void classify_convexity(SegmentationWork& work) const;  // 6. CC and SC, eq. (1)-(5) (A.2)
+  void merge_convex(SegmentationWork& work) const;        // 7. components over convex edges (A.3)
+  void filter_small(SegmentationWork& work) const;        // 8. small segments merged, a label per point (A.4)
 
   const LccpConfig& config() const { return config_; }
 

@@ -12,7 +12,7 @@
 #include "lccp/cloud.hpp"
 #include "lccp/config.hpp"
 #include "lccp/core/lccp.hpp"
-#include "lccp/core/stages.hpp"
+#include "lccp/stages.hpp"
 #include "lccp/objects/geometry.hpp"
 #include "lccp/objects/tracking.hpp"
 
@@ -49,15 +49,21 @@ struct ObjectParts {
   SegmentationWork work;              // over `cloud`
 };
 
-// One frame on its way through the stages of kStages.
+// One frame on its way through the stages of kStages. Every stage adds its
+// time to objects.result.times (the frame's one record of stage times).
 struct SceneWork {
   explicit SceneWork(const CloudView& cloud) : objects(cloud) {}
 
   SegmentationWork objects;                          // stages 0-8
   std::vector<std::unique_ptr<ObjectParts>> parts;   // stage 9: one per object
   std::vector<ObjectSegments> segments;              // stage 10, by dense labels
-  SegmentTracker* tracker = nullptr;                 // stage 11: the stream's; null: ids in label order
-  SceneSegmentation result;                          // stage 11 (labels, ids); times from every stage
+  SceneSegmentation result;                          // stage 11 (labels, ids)
+
+  // The result with every stage's time; the work is spent.
+  SceneSegmentation take_result() {
+    result.times = objects.result.times;
+    return std::move(result);
+  }
 };
 
 // Immutable after construction: segment() and run_stage() may run on several
@@ -72,9 +78,14 @@ class SceneSegmenter {
   // without finite points or beyond the config's limits.
   SceneSegmentation segment(const CloudView& cloud) const;
 
-  // Runs one stage on `work` and adds its time to work.result.times, in kStages
-  // order. Stage 11 needs work.tracker.
+  // Runs one stage before the ids (support to geometry, kStages order) on
+  // `work`: the streaming pipeline runs them frames in parallel. Throws
+  // lccp::Error for Stage::ids, which needs the stream's tracker: assign_ids.
   void run_stage(Stage stage, SceneWork& work) const;
+
+  // Stage 11: ids matched to the previous frame's by `tracker`, the stream's
+  // (one frame at a time, in frame order); labels and geometry renamed to them.
+  void assign_ids(SceneWork& work, SegmentTracker& tracker) const;
 
   // A tracker for a stream: ids after the support's.
   SegmentTracker new_tracker() const;
@@ -84,7 +95,6 @@ class SceneSegmenter {
  private:
   void partition_objects(SceneWork& work) const;
   void describe(SceneWork& work) const;
-  void assign_ids(SceneWork& work) const;
 
   SceneConfig config_;
   LccpSegmenter objects_;

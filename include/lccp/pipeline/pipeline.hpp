@@ -3,20 +3,48 @@
 // with several frames in flight and hands results over in frame order.
 //
 //   source (read on a capture thread) -> admission (K slots) -> back-projection
-//          -> one node per kPipelineNodes entry (the stages of kStages), frames in
-//             parallel -> sequencer -> the last node (stable ids) in frame order
-//          -> sink -> the slot goes back to admission
+//          -> one node per kPipelineNodes entry but the last (the stages of
+//             kStages), frames in parallel -> sequencer -> the last node (stable
+//             ids, the stream's tracker) in frame order -> sink
+//          -> the slot goes back to admission
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <mutex>
 #include <stop_token>
 #include <string>
+#include <string_view>
 
 #include "lccp/frame_source.hpp"
 #include "lccp/frame.hpp"
 #include "lccp/objects/scene.hpp"
+#include "lccp/stages.hpp"
 
 namespace lccp {
+
+// The pipeline's flow-graph nodes, each a run of consecutive stages of kStages
+// (first to last). Every node but the last runs frames in parallel; the last
+// runs them one at a time in frame order.
+struct PipelineNode {
+  std::string_view name;
+  Stage first;
+  Stage last;
+
+  bool contains(Stage stage) const { return first <= stage && stage <= last; }
+  double ms(const StageTimes& times) const {  // the node's share of a frame's times
+    double sum = 0;
+    for (const StageInfo& info : kStages) sum += contains(info.stage) ? times[info.stage] : 0.0;
+    return sum;
+  }
+};
+
+inline constexpr std::array<PipelineNode, 5> kPipelineNodes{{
+    {"voxelize_normals", Stage::support, Stage::normals},
+    {"supervoxels", Stage::seeds, Stage::growth},
+    {"graph_labels", Stage::adjacency, Stage::filter},
+    {"parts_geometry", Stage::parts, Stage::geometry},
+    {"ids", Stage::ids, Stage::ids},
+}};
 
 // What happens to a frame that arrives while K frames are already in flight.
 enum class DropPolicy {

@@ -1,11 +1,12 @@
 #pragma once
 // The one list of a frame's stages: the method in the paper's order (Section
-// II.B and Appendix A, stages 1-8), framed by the robot application's (Section
-// III.C): the support plane before, parts, geometry and stable ids after. The
-// segmenters run them in this order, the streaming pipeline groups them into its
-// flow-graph nodes by `node`, and every timing report names and orders its
-// columns from this table.
+// II.B and Appendix A, stages 0-8: LccpSegmenter), then the robot
+// application's (Section III.C: parts, geometry and stable ids, SceneSegmenter).
+// Every timing report names and orders its columns from this table; the
+// streaming pipeline groups the stages into its own nodes
+// (lccp/pipeline/pipeline.hpp).
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <numeric>
 #include <string_view>
@@ -17,7 +18,7 @@ enum class Stage : unsigned char {
   voxelize,    // 1. voxel grid with 26-adjacency (A.1, VCCS)
   normals,     // 2. one normal per voxel
   seeds,       // 3. supervoxel seeds on a grid of R_seed
-  growth,      // 4. VCCS growth in the weighted feature space
+  growth,      // 4. supervoxel growth (VCCS, or the flood)
   adjacency,   // 5. the supervoxel adjacency graph (A.1)
   classify,    // 6. every edge convex or not: CC and SC, eq. (1)-(5) (A.2)
   components,  // 7. connected components over convex edges (A.3)
@@ -30,32 +31,26 @@ enum class Stage : unsigned char {
 struct StageInfo {
   Stage stage;
   std::string_view name;  // column and key names in reports: "<name>_ms"
-  unsigned node;          // the pipeline's flow-graph node that runs it (kPipelineNodes)
 };
 
 inline constexpr std::array<StageInfo, 12> kStages{{
-    {Stage::support, "support", 0},
-    {Stage::voxelize, "voxelize", 0},
-    {Stage::normals, "normals", 0},
-    {Stage::seeds, "seeds", 1},
-    {Stage::growth, "growth", 1},
-    {Stage::adjacency, "adjacency", 2},
-    {Stage::classify, "classify", 2},
-    {Stage::components, "components", 2},
-    {Stage::filter, "filter", 2},
-    {Stage::parts, "parts", 3},
-    {Stage::geometry, "geometry", 3},
-    {Stage::ids, "ids", 4},
+    {Stage::support, "support"},
+    {Stage::voxelize, "voxelize"},
+    {Stage::normals, "normals"},
+    {Stage::seeds, "seeds"},
+    {Stage::growth, "growth"},
+    {Stage::adjacency, "adjacency"},
+    {Stage::classify, "classify"},
+    {Stage::components, "components"},
+    {Stage::filter, "filter"},
+    {Stage::parts, "parts"},
+    {Stage::geometry, "geometry"},
+    {Stage::ids, "ids"},
 }};
 inline constexpr std::size_t kStageCount = kStages.size();
 
 // Stages 0-8: one level of LCCP on one cloud (LccpSegmenter).
 inline constexpr std::size_t kLccpStageCount = 9;
-
-// The pipeline's nodes, each a run of consecutive stages of kStages. Every node
-// but the last runs frames in parallel; the last runs them one at a time in frame order.
-inline constexpr std::array<std::string_view, 5> kPipelineNodes{"voxelize_normals", "supervoxels", "graph_labels",
-                                                               "parts_geometry", "ids"};
 
 // Milliseconds per stage of one frame.
 struct StageTimes {
@@ -64,11 +59,23 @@ struct StageTimes {
   double& operator[](Stage stage) { return ms[static_cast<std::size_t>(stage)]; }
   double operator[](Stage stage) const { return ms[static_cast<std::size_t>(stage)]; }
   double total_ms() const { return std::accumulate(ms.begin(), ms.end(), 0.0); }
-  double node_ms(unsigned node) const {
-    double sum = 0;
-    for (const StageInfo& info : kStages) sum += info.node == node ? (*this)[info.stage] : 0.0;
-    return sum;
+};
+
+// The one stage timer: adds the wall time of its scope to times[stage],
+// however the scope ends (a stage that throws keeps the time it took).
+class StageTimer {
+ public:
+  StageTimer(StageTimes& times, Stage stage) : times_(times), stage_(stage) {}
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+  ~StageTimer() {
+    times_[stage_] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
   }
+
+ private:
+  StageTimes& times_;
+  Stage stage_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace lccp
