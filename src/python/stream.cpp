@@ -1,7 +1,7 @@
 // lccp_stream.Replay and lccp_stream.Live: the library's BackgroundStream over
 // a source opened by open_source; Python iterates over the frames it hands over.
 //
-//   BackgroundStream (its thread, its hand-off queue) -> __next__ (Python) -> Frame
+//   BackgroundStream (the library's thread and hand-off) -> __next__ (Python) -> Frame
 //
 // close(), Ctrl-C, the end of a with block and the object's destruction stop
 // the stream (BackgroundStream::stop); waits release the GIL.
