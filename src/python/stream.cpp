@@ -11,6 +11,7 @@
 #include "bindings.hpp"
 #include "lccp/capture/open_source.hpp"
 #include "lccp/pipeline/background_stream.hpp"
+#include "lccp/pipeline/push_source.hpp"
 
 namespace lccp::python {
 namespace {
@@ -112,6 +113,26 @@ struct Replay : Stream {
 };
 struct Live : Stream {
   using Stream::Stream;
+};
+
+// A Stream over a PushSource: arrays pushed from Python are its frames.
+class Push : public Stream {
+ public:
+  Push(std::unique_ptr<PushSource> source, PushSource& pushed, const SceneConfig& config, unsigned inflight,
+       std::optional<int> threads)
+      : Stream(std::move(source), config, inflight, threads, std::nullopt), pushed_(pushed) {}
+
+  std::uint64_t push(const CloudArrays& arrays, std::uint64_t timestamp_us) {
+    Frame frame;
+    frame.cloud = owned_cloud(arrays);
+    frame.timestamp_us = timestamp_us;
+    frame.captured = Clock::now();
+    return pushed_.push(std::move(frame));
+  }
+  void end() { pushed_.close(); }
+
+ private:
+  PushSource& pushed_;  // the Stream's source
 };
 
 std::unique_ptr<FrameSource> open(const std::string& spec, const SourceLimits& limits) {
@@ -225,12 +246,46 @@ close() or Ctrl-C.
   bind_stream_methods(live);
 }
 
+void bind_push(py::module_& module) {
+  py::class_<Push> push(module, "Push", (std::string(R"doc(
+Segments clouds you push (from your own driver or another library), in the
+background, as a live source: push() never waits, and when frames come faster
+than they are segmented the oldest waiting ones are dropped (`waiting` frames
+wait at most; Frame.index shows the gaps). Iterate to get the Frames; end()
+says no more frames come, and the iteration stops after the last one.
+
+config: as segment()'s. inflight: frames segmented at once. threads: None for
+every core, or a count. waiting: frames kept waiting for the pipeline (>= 1).
+)doc") + kStreamMethodsDoc).c_str());
+  push.def(py::init([](ConfigArg config, unsigned inflight, std::optional<int> threads, std::size_t waiting) {
+             const SceneConfig scene_config = config_from(config);
+             threads = thread_count(threads);
+             if (waiting == 0) throw py::value_error("waiting: expected a positive number, got 0");
+             auto source = std::make_unique<PushSource>(waiting);
+             PushSource& pushed = *source;
+             return std::make_unique<Push>(std::move(source), pushed, scene_config, inflight, threads);
+           }),
+           py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
+           py::arg("waiting") = 1);
+  push.def(
+      "push",
+      [](Push& self, ArrayArg points, OptionalArrayArg colors, OptionalArrayArg normals, std::uint64_t timestamp_us) {
+        return self.push(cloud_arrays(points, colors, normals), timestamp_us);
+      },
+      py::arg("points"), py::arg("colors") = py::none(), py::arg("normals") = py::none(),
+      py::arg("timestamp_us") = 0,
+      "Queues a copy of the cloud (arrays as segment() takes them); returns its frame index.");
+  push.def("end", &Push::end, "No more frames: the iteration stops after the last one pushed.");
+  bind_stream_methods(push);
+}
+
 }  // namespace
 
 void bind_streams(py::module_& module) {
   bind_frame(module);
   bind_replay(module);
   bind_live(module);
+  bind_push(module);
 }
 
 }  // namespace lccp::python

@@ -127,3 +127,40 @@ def test_a_disappearing_device_raises_runtime_error():
         for frame in live:
             frames.append(frame)
     assert len(frames) <= 2
+
+
+def test_pushed_clouds_come_back_in_order_with_segments_labels(mosd_cloud, mosd_labels):
+    """Push: each cloud waited for comes back as a Frame with segment()'s labels; end() ends it."""
+    with lccp_stream.Push(config="p1", inflight=2) as stream:
+        for expected_index in range(3):
+            index = stream.push(mosd_cloud["points"], colors=mosd_cloud["colors"], timestamp_us=1000 * expected_index)
+            assert index == expected_index
+            frame = next(stream)
+            assert (frame.index, frame.timestamp_us, frame.error) == (expected_index, 1000 * expected_index, "")
+            assert frame.points.shape == mosd_cloud["points"].shape
+            np.testing.assert_array_equal(frame.labels, mosd_labels)
+        stream.end()
+        with pytest.raises(StopIteration):
+            next(stream)
+
+
+def test_pushing_faster_than_segmenting_drops_the_oldest_and_keeps_the_newest(mosd_cloud):
+    pushed = 20
+    with lccp_stream.Push(config="p1", inflight=1, threads=1, waiting=1) as stream:
+        for _ in range(pushed):
+            stream.push(mosd_cloud["points"])
+        stream.end()
+        indices = [frame.index for frame in stream]
+    assert indices and indices == sorted(set(indices))
+    assert indices[-1] == pushed - 1  # the newest always gets through
+    # Nothing was taken while pushing, so at most 5 frames were kept, however fast the
+    # machine: 2 in the hand-off queue, 1 at its sink, 1 at admission, 1 in the source.
+    assert len(indices) <= 5
+
+
+def test_push_rejects_bad_arrays_and_zero_waiting(mosd_cloud):
+    with lccp_stream.Push() as stream:
+        with pytest.raises(ValueError, match="points"):
+            stream.push(np.zeros((5, 2), np.float32))
+    with pytest.raises(ValueError, match="waiting"):
+        lccp_stream.Push(waiting=0)
