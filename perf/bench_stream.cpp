@@ -110,7 +110,6 @@ class MemorySource final : public lccp::FrameSource {
 using lccp::perf::mean;
 using lccp::perf::median;
 using lccp::perf::ms_since;
-using lccp::perf::percentile;
 
 // User + system CPU seconds of this process so far.
 double cpu_seconds() {
@@ -210,9 +209,9 @@ RunResult run_pipeline(const lccp::SceneSegmenter& segmenter, const std::vector<
   std::vector<double> latency;
   latency.reserve(records.size());
   for (const FrameRecord& r : records) latency.push_back(r.end_to_end_ms);
-  result.p50 = percentile(latency, 50);
-  result.p95 = percentile(latency, 95);
-  result.p99 = percentile(latency, 99);
+  result.p50 = lccp::percentile(latency, 0.50);
+  result.p95 = lccp::percentile(latency, 0.95);
+  result.p99 = lccp::percentile(latency, 0.99);
   result.max = latency.empty() ? 0 : *std::max_element(latency.begin(), latency.end());
   for (std::size_t s = 0; s < StageMedians::kCount; ++s) {
     std::vector<double> values;
@@ -244,7 +243,7 @@ Reference summarize(const std::vector<double>& ms) {
   r.frames = ms.size();
   r.median_ms = median(ms);
   r.mean_ms = mean(ms);
-  r.p95_ms = percentile(ms, 95);
+  r.p95_ms = lccp::percentile(ms, 0.95);
   r.frames_per_s = r.mean_ms > 0 ? 1000.0 / r.mean_ms : 0;
   return r;
 }

@@ -5,12 +5,16 @@
 #include <cmath>
 #include <vector>
 
+#include "lccp/metrics/statistics.hpp"
+
 namespace lccp::perf {
 
 inline double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The median as statistics defines it (the mean of the two middle values for an
+// even count), as RESULTS.md quotes timings; reports' p50 is the nearest rank.
 inline double median(std::vector<double> values) {
   if (values.empty()) return 0;
   std::sort(values.begin(), values.end());
@@ -25,12 +29,6 @@ inline double mean(const std::vector<double>& values) {
   return sum / static_cast<double>(values.size());
 }
 
-// Nearest rank: the smallest value with at least p % of the values at or below it.
-inline double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
+// Percentiles: lccp::percentile (lccp/metrics/statistics.hpp), the library's one definition.
 
 }  // namespace lccp::perf

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config zlib1g-dev
   libeigen3-dev libtbb-dev libpcl-dev libopenni2-dev
-  libspdlog-dev libyaml-cpp-dev libcli11-dev
+  libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
   libroscpp-dev libnodeletlib-dev libnodeletlib-tools pluginlib-dev librosbag-dev

@@ -69,37 +69,40 @@ Labels labels_of(LabelledCloud& cloud, const std::string& path) {
   return std::move(*cloud.labels);
 }
 
-// "40, 50" (text) or "[40, 50]" (JSON).
-std::string label_list(const std::vector<std::uint32_t>& labels, bool json) {
-  std::string text = json ? "[" : "";
+// "40, 50".
+std::string label_list(const std::vector<std::uint32_t>& labels) {
+  std::string text;
   for (std::size_t i = 0; i < labels.size(); ++i) text += (i ? ", " : "") + std::to_string(labels[i]);
-  return json ? text + "]" : text;
+  return text;
 }
 
 // The regions lost into the support, their number and labels: "objects lost
 // into the support: 2 (40, 50)".
 std::string lost_text(const SegmentationScores& s) {
   std::string text = "objects lost into the support: " + std::to_string(s.objects_lost);
-  return s.lost_labels.empty() ? text : text + " (" + label_list(s.lost_labels, false) + ")";
+  return s.lost_labels.empty() ? text : text + " (" + label_list(s.lost_labels) + ")";
 }
 
-// The scores as JSON members, without braces; `lost` lists the lost labels
-// (one cloud) or the frames that lost some (folders).
-std::string json_members(const SegmentationScores& s, bool object_level, const std::string& lost) {
-  char text[1024];
-  std::snprintf(text, sizeof text,
-                "\"wov\": %.6f, \"tp\": %.6f, \"fp\": %.6f, \"fn\": %.6f, \"fos\": %.6f, \"fus\": %.6f, "
-                "\"ari\": %.6f, \"ground_truth_regions\": %u, \"scored_points\": %llu, \"object_level\": %s, "
-                "\"objects_lost\": %u, ",
-                s.weighted_overlap, s.true_positive, s.false_positive, s.false_negative, s.over_segmentation,
-                s.under_segmentation, s.adjusted_rand_index, s.ground_truth_regions,
-                static_cast<unsigned long long>(s.scored_points), object_level ? "true" : "false", s.objects_lost);
-  return text + lost;
+// The scores as a JSON object; the caller adds what was lost (per cloud or per frame).
+Json scores_json(const SegmentationScores& s, bool object_level) {
+  return {{"wov", s.weighted_overlap},
+          {"tp", s.true_positive},
+          {"fp", s.false_positive},
+          {"fn", s.false_negative},
+          {"fos", s.over_segmentation},
+          {"fus", s.under_segmentation},
+          {"ari", s.adjusted_rand_index},
+          {"ground_truth_regions", s.ground_truth_regions},
+          {"scored_points", s.scored_points},
+          {"object_level", object_level},
+          {"objects_lost", s.objects_lost}};
 }
 
 void print_scores(const SegmentationScores& s, bool json, bool object_level) {
   if (json) {
-    std::printf("{%s}\n", json_members(s, object_level, "\"lost_labels\": " + label_list(s.lost_labels, true)).c_str());
+    Json document = scores_json(s, object_level);
+    document["lost_labels"] = s.lost_labels;
+    std::fputs(json_line(document).c_str(), stdout);
     return;
   }
   std::printf("WOv %.4f  tp %.4f  fp %.4f  fn %.4f  Fos %.4f  Fus %.4f  ARI %.4f  (%u regions, %llu points)\n",
@@ -173,11 +176,11 @@ SegmentationScores mean_scores(const std::filesystem::path& predicted, const std
 void print_mean(const SegmentationScores& mean, std::size_t frames, const LostByFrame& lost, bool json,
                 bool object_level) {
   if (json) {
-    std::string members = "\"frames\": " + std::to_string(frames) + ", \"lost_frames\": {";
-    for (std::size_t i = 0; i < lost.size(); ++i) {
-      members += (i ? ", " : "") + json_string(lost[i].first) + ": " + label_list(lost[i].second, true);
-    }
-    std::printf("{%s}\n", json_members(mean, object_level, members + "}").c_str());
+    Json document = scores_json(mean, object_level);
+    document["frames"] = frames;
+    Json& lost_frames = document["lost_frames"] = Json::object();
+    for (const auto& [name, labels] : lost) lost_frames[name] = labels;
+    std::fputs(json_line(document).c_str(), stdout);
     return;
   }
   for (const auto& [name, labels] : lost) {

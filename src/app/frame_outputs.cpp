@@ -68,27 +68,35 @@ void FrameWriter::write(const FrameResult& result) {
   if (!result.frame.name.empty() && !input_stems_.insert(name).second) {
     throw Error("two inputs named " + name + ": their outputs would overwrite each other");
   }
-  write_files_together(frame_files(result, (directory_ / name).string()));  // the cloud named last
+  const FramePaths where = paths(result, (directory_ / name).string());
+  write_files_together(frame_files(result.frame.cloud, result.segmentation, result.frame.index,
+                                   result.frame.timestamp_us, where, options_));
 }
 
-std::vector<FileBytes> FrameWriter::frame_files(const FrameResult& result, const std::string& stem) const {
-  const PointCloud& cloud = result.frame.cloud;
-  const SceneSegmentation& scene = result.segmentation;
-  const Labels& labels = scene.labels;
+FramePaths FrameWriter::paths(const FrameResult& result, const std::string& stem) const {
+  FramePaths paths;
+  if (options_.saves("png") && result.frame.cloud.organized()) paths.png = stem + ".png";
+  if (options_.saves("segments")) paths.segments = stem + ".segments.json";
+  for (const char* kind : {"ply", "pcd"}) {
+    if (options_.saves(kind)) paths.clouds.push_back(stem + "." + kind);
+  }
+  return paths;
+}
+
+std::vector<FileBytes> frame_files(const PointCloud& cloud, const SceneSegmentation& scene, std::uint64_t index,
+                                   std::uint64_t timestamp_us, const FramePaths& paths,
+                                   const FrameOutputOptions& options) {
   const Labels* objects = scene.objects.size() == cloud.size() ? &scene.objects : nullptr;
-  // The labelled clouds come last: write_files_together names the files in
-  // this order, so a frame whose cloud exists has all its outputs.
   std::vector<FileBytes> files;
-  if (options_.saves("png") && cloud.organized()) {
-    files.push_back({stem + ".png", encode_label_png(cloud, labels, options_.image_style(), objects)});
+  if (!paths.png.empty()) {
+    files.push_back({paths.png, encode_label_png(cloud, scene.labels, options.image_style(), objects)});
   }
-  if (options_.saves("segments")) {
-    const std::string json = encode_segments_json(result.frame.index, result.frame.timestamp_us, scene);
-    files.push_back({stem + ".segments.json", std::vector<std::uint8_t>(json.begin(), json.end())});
+  if (!paths.segments.empty()) {
+    const std::string json = encode_segments_json(index, timestamp_us, scene);
+    files.push_back({paths.segments, std::vector<std::uint8_t>(json.begin(), json.end())});
   }
-  if (options_.saves("ply")) files.push_back({stem + ".ply", encode_labelled_ply(cloud, labels, objects)});
-  if (options_.saves("pcd")) {
-    files.push_back({stem + ".pcd", encode_labelled_pcd(cloud, labels, options_.pcd_encoding(), objects)});
+  for (const std::string& path : paths.clouds) {
+    files.push_back({path, encode_labelled_cloud(path, cloud, scene.labels, options.pcd_encoding(), objects)});
   }
   return files;
 }

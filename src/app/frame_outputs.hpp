@@ -36,6 +36,21 @@ std::string save_help(const std::vector<std::string>& default_save);
 // Output name of a frame: frame_<index>_<timestamp>us, or the source file's stem.
 std::string frame_output_stem(const Frame& frame);
 
+// Where one frame's outputs go; an empty path (or no cloud path) is not written.
+struct FramePaths {
+  std::string png;                  // label image
+  std::string segments;             // per-segment geometry (JSON)
+  std::vector<std::string> clouds;  // labelled clouds, each .pcd or .ply by its extension
+};
+
+// The one list of a frame's output files, in the order write_files_together
+// names them: image, segments, then the labelled clouds, so a frame whose
+// cloud exists has all its outputs. Throws lccp::Error for a cloud path that
+// is neither .pcd nor .ply.
+std::vector<FileBytes> frame_files(const PointCloud& cloud, const SceneSegmentation& scene, std::uint64_t index,
+                                   std::uint64_t timestamp_us, const FramePaths& paths,
+                                   const FrameOutputOptions& options);
+
 // Writes the selected outputs of each finished frame into the folder (created
 // if missing); a frame's files appear together. A frame that failed leaves no
 // file (its error is reported, stream_run.cpp). Throws lccp::Error when two
@@ -46,7 +61,7 @@ class FrameWriter {
   void write(const FrameResult& result);
 
  private:
-  std::vector<FileBytes> frame_files(const FrameResult& result, const std::string& stem) const;
+  FramePaths paths(const FrameResult& result, const std::string& stem) const;
 
   FrameOutputOptions options_;
   std::filesystem::path directory_;

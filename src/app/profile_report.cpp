@@ -42,20 +42,17 @@ LatencyRow end_to_end_row() {
 // "1 frame", "2 frames".
 std::string counted(std::uint64_t count, const char* noun) { return fmt::format("{} {}{}", count, noun, count == 1 ? "" : "s"); }
 
-std::string json_value(double value) { return std::isfinite(value) ? fmt::format("{:.6g}", value) : "null"; }
-
-std::string json_percentiles(const Percentiles& p) {
-  return fmt::format("{{\"p50\": {}, \"p95\": {}, \"p99\": {}, \"max\": {}}}", json_value(p.p50), json_value(p.p95),
-                     json_value(p.p99), json_value(p.max));
-}
-
-// A config value as JSON: true/false and numbers as they are, anything else quoted.
-std::string json_config_value(const std::string& text) {
-  if (text == "true" || text == "false") return text;
-  std::istringstream in(text);
-  double number = 0;
-  if (in >> number && in.peek() == std::char_traits<char>::eof()) return text;
-  return json_string(text);
+// A config value as JSON: true/false and numbers as they are, anything else a string.
+Json config_value_json(const std::string& text) {
+  if (text == "true" || text == "false") return text == "true";
+  for (const bool whole : {true, false}) {  // "8" stays 8, not 8.0
+    std::istringstream in(text);
+    std::int64_t integer = 0;
+    double number = 0;
+    if (whole ? !(in >> integer) : !(in >> number)) continue;
+    if (in.peek() == std::char_traits<char>::eof()) return whole ? Json(integer) : Json(number);
+  }
+  return text;
 }
 
 // (key, value) of every config key, from describe_config's "key: value    # meaning" lines.
@@ -416,48 +413,41 @@ std::string profile_table(const ProfileSetup& setup, const RunReport& report) {
   return table;
 }
 
+// The run's setup: source, config, threads, frames in flight, drop policy.
+Json setup_json(const ProfileSetup& setup, const CpuUse& cpu) {
+  Json config = Json::object();
+  for (const auto& [key, value] : config_entries(setup.config)) config[key] = config_value_json(value);
+  return {{"source", setup.source},
+          {"source_kind", to_string(setup.kind)},
+          {"realtime", setup.realtime},
+          {"config_file", setup.config_file},
+          {"settings", setup.settings},
+          {"config", std::move(config)},
+          {"threads", setup.threads},
+          {"cores", cpu.cores},
+          {"frames_in_flight", setup.frames_in_flight},
+          {"drop_policy", policy_name(setup.drop_policy)}};
+}
+
 void write_profile_json(const std::filesystem::path& path, const ProfileSetup& setup, const RunReport& report) {
   const PipelineStats& stats = report.stats();
   const CpuUse& cpu = report.cpu();
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "{\n  \"source\": " << json_string(setup.source) << ",\n"
-        << "  \"source_kind\": " << json_string(to_string(setup.kind)) << ",\n"
-        << "  \"realtime\": " << (setup.realtime ? "true" : "false") << ",\n"
-        << "  \"config_file\": " << json_string(setup.config_file) << ",\n  \"settings\": [";
-    for (std::size_t i = 0; i < setup.settings.size(); ++i) out << (i ? ", " : "") << json_string(setup.settings[i]);
-    out << "],\n  \"config\": {";
-    const auto entries = config_entries(setup.config);
-    for (std::size_t i = 0; i < entries.size(); ++i) {
-      out << (i ? ", " : "") << json_string(entries[i].first) << ": " << json_config_value(entries[i].second);
-    }
-    out << "},\n"
-        << "  \"threads\": " << setup.threads << ",\n"
-        << "  \"cores\": " << cpu.cores << ",\n"
-        << "  \"frames_in_flight\": " << setup.frames_in_flight << ",\n"
-        << "  \"drop_policy\": " << json_string(policy_name(setup.drop_policy)) << ",\n"
-        << "";
-    write_counts_json(out, stats, "  ");
-    out << ",\n  \"wall_seconds\": " << json_value(stats.wall_seconds) << ",\n"
-        << "  \"frames_per_second\": " << json_value(report.frames_per_second()) << ",\n"
-        << "  \"cpu_user_seconds\": " << json_value(cpu.user_s) << ",\n"
-        << "  \"cpu_system_seconds\": " << json_value(cpu.system_s) << ",\n"
-        << "  \"cpu_percent_of_one_core\": " << json_value(cpu.percent_of_one_core()) << ",\n"
-        << "  \"cpu_percent_of_cores\": " << json_value(cpu.percent_of_cores()) << ",\n"
-        << "  \"frame_period_ms\": " << json_value(kFramePeriodMs) << ",\n  \"pipeline_stages\": [";
-    bool first = true;
-    for (const LatencyRow& row : latency_rows()) {
-      if (row.kind != Kind::node) continue;
-      out << (first ? "" : ", ") << json_string(row.key);
-      first = false;
-    }
-    out << "],\n  \"latency_ms\": {\n";
-    const std::vector<LatencyRow>& rows = latency_rows();
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      out << "    " << json_string(rows[i].key) << ": " << json_percentiles(report.percentiles_of(rows[i].ms))
-          << (i + 1 < rows.size() ? ",\n" : "\n");
-    }
-    out << "  }\n}\n";
-  });
+  Json document = setup_json(setup, cpu);
+  document.update(counts_json(stats));
+  document["wall_seconds"] = stats.wall_seconds;
+  document["frames_per_second"] = report.frames_per_second();
+  document["cpu_user_seconds"] = cpu.user_s;
+  document["cpu_system_seconds"] = cpu.system_s;
+  document["cpu_percent_of_one_core"] = cpu.percent_of_one_core();
+  document["cpu_percent_of_cores"] = cpu.percent_of_cores();
+  document["frame_period_ms"] = kFramePeriodMs;
+  Json& stages = document["pipeline_stages"] = Json::array();
+  Json& latency = document["latency_ms"] = Json::object();
+  for (const LatencyRow& row : latency_rows()) {
+    if (row.kind == Kind::node) stages.push_back(row.key);
+    latency[row.key] = percentiles_json(report.percentiles_of(row.ms));
+  }
+  write_file_atomically(path, std::string_view(json_text(document)));
 }
 
 void write_frames_csv(const std::filesystem::path& path, const RunReport& report) {

@@ -3,9 +3,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "lccp/error.hpp"
 #include "lccp/io/atomic_file.hpp"
@@ -18,16 +16,6 @@ double seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 *
 }  // namespace
 
 double FrameRecord::waiting_ms() const { return std::max(0.0, end_to_end_ms - back_projection_ms - stages.total_ms()); }
-
-Percentiles percentiles(std::vector<double> values) {
-  if (values.empty()) return {};
-  std::sort(values.begin(), values.end());
-  const auto at = [&](double q) {  // nearest rank
-    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
-    return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-  };
-  return {at(0.50), at(0.95), at(0.99), values.back()};
-}
 
 CpuTimes process_cpu_times() {
   rusage usage{};
@@ -72,13 +60,36 @@ std::string counts_text(const PipelineStats& s) {
          " completed + " + n(s.frames_failed) + " failed + " + n(s.frames_dropped) + " dropped";
 }
 
-void write_counts_json(std::ostream& out, const PipelineStats& s, const char* indent) {
-  out << indent << "\"frames_received\": " << s.frames_received << ",\n"
-      << indent << "\"sensor_gaps\": " << s.sensor_gaps << ",\n"
-      << indent << "\"frames_completed\": " << s.frames_completed << ",\n"
-      << indent << "\"frames_failed\": " << s.frames_failed << ",\n"
-      << indent << "\"frames_dropped\": " << s.frames_dropped;
+Json counts_json(const PipelineStats& s) {
+  return {{"frames_received", s.frames_received},
+          {"sensor_gaps", s.sensor_gaps},
+          {"frames_completed", s.frames_completed},
+          {"frames_failed", s.frames_failed},
+          {"frames_dropped", s.frames_dropped}};
 }
+
+Json percentiles_json(const Percentiles& p) { return {{"p50", p.p50}, {"p95", p.p95}, {"p99", p.p99}, {"max", p.max}}; }
+
+// Bytes that are not UTF-8 (a path is any bytes) become U+FFFD instead of an exception.
+std::string json_text(const Json& document) { return document.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+
+namespace {
+
+// Arrays and objects spaced as json_line says; anything else as nlohmann writes it.
+std::string spaced(const Json& value) {
+  if (!value.is_structured()) return value.dump(-1, ' ', false, Json::error_handler_t::replace);
+  std::string text;
+  for (auto item = value.begin(); item != value.end(); ++item) {
+    if (!text.empty()) text += ", ";
+    if (value.is_object()) text += spaced(Json(item.key())) + ": ";
+    text += spaced(item.value());
+  }
+  return value.is_object() ? "{" + text + "}" : "[" + text + "]";
+}
+
+}  // namespace
+
+std::string json_line(const Json& document) { return spaced(document) + "\n"; }
 
 std::string RunReport::summary_line() const {
   const Percentiles latency = end_to_end_ms();
@@ -89,33 +100,12 @@ std::string RunReport::summary_line() const {
 }
 
 void RunReport::write_json(const std::filesystem::path& path, const std::string& source) const {
-  const Percentiles latency = end_to_end_ms();
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "{\n  \"source\": " << json_string(source) << ",\n";
-    write_counts_json(out, stats_, "  ");
-    out << ",\n  \"wall_seconds\": " << stats_.wall_seconds << ",\n"
-        << "  \"frames_per_second\": " << frames_per_second() << ",\n"
-        << "  \"end_to_end_ms\": {\"p50\": " << latency.p50 << ", \"p95\": " << latency.p95
-        << ", \"p99\": " << latency.p99 << ", \"max\": " << latency.max << "}\n}\n";
-  });
+  Json document = {{"source", source}};
+  document.update(counts_json(stats_));
+  document["wall_seconds"] = stats_.wall_seconds;
+  document["frames_per_second"] = frames_per_second();
+  document["end_to_end_ms"] = percentiles_json(end_to_end_ms());
+  write_file_atomically(path, std::string_view(json_text(document)));
 }
-
-std::string json_string(std::string_view text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      quoted += '\\';
-      quoted += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
-      quoted += escaped;
-    } else {
-      quoted += c;
-    }
-  }
-  return quoted + "\"";
-}
-
 
 }  // namespace lccp::app

@@ -3,11 +3,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <ostream>
 #include <string>
-#include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "lccp/metrics/statistics.hpp"
 #include "lccp/pipeline/pipeline.hpp"
 
 namespace lccp::app {
@@ -27,10 +28,6 @@ struct FrameRecord {
   double waiting_ms() const;
 };
 
-struct Percentiles {
-  double p50 = 0, p95 = 0, p99 = 0, max = 0;
-};
-Percentiles percentiles(std::vector<double> values);
 
 // Processor time the whole process used during a run (getrusage: every thread,
 // including the capture thread and OpenNI2's), against the run's wall time.
@@ -84,12 +81,19 @@ class RunReport {
 // frames the source produced, then where each went (PipelineStats::adds_up).
 std::string counts_text(const PipelineStats& stats);
 
-// The counts as JSON members, `indent` before each: "frames_received": 81, ...
-// (without a trailing comma).
-void write_counts_json(std::ostream& out, const PipelineStats& stats, const char* indent);
+// JSON (nlohmann-json, https://json.nlohmann.me; members in the order added)
+// for the reports: the counts' members ("frames_received": 81, ...) and a
+// latency row ({"p50": ..., "p95": ..., "p99": ..., "max": ...}). A
+// non-finite number is written as null (RFC 8259 has no NaN).
+using Json = nlohmann::ordered_json;
+Json counts_json(const PipelineStats& stats);
+Json percentiles_json(const Percentiles& percentiles);
 
-// `text` as a JSON string literal, quotes included.
-std::string json_string(std::string_view text);
+// `document` indented by 2, with a newline at the end (the report files).
+std::string json_text(const Json& document);
 
+// `document` on one line, a space after each ':' and ',' (Python's
+// json.dumps style), with a newline at the end: lccp eval --json, one object a line.
+std::string json_line(const Json& document);
 
 }  // namespace lccp::app

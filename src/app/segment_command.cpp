@@ -66,17 +66,7 @@ int segment_one(const SegmentOptions& options, std::stop_token stop) {
   if (!options.png.empty() && !cloud.organized()) throw Error(input + ": --png needs an organized (image-shaped) cloud");
   const SceneSegmentation result = segmenter.segment(cloud);
   if (stop.stop_requested()) return kExitInterrupted;  // interrupted: nothing written
-  const Labels* objects = result.objects.empty() ? nullptr : &result.objects;
-  std::vector<FileBytes> files;  // the labelled cloud last: once it exists, so do the others
-  if (!options.png.empty()) {
-    files.push_back({options.png, encode_label_png(cloud, result.labels, out.image_style(), objects)});
-  }
-  if (!options.segments.empty()) {
-    const std::string json = encode_segments_json(0, 0, result);
-    files.push_back({options.segments, std::vector<std::uint8_t>(json.begin(), json.end())});
-  }
-  files.push_back({output, encode_labelled_cloud(output, cloud, result.labels, out.pcd_encoding(), objects)});
-  write_files_together(files);
+  write_files_together(frame_files(cloud, result, 0, 0, {options.png, options.segments, {output}}, out));
   print_summary(cloud, result);
   return kExitDone;
 }

@@ -2,7 +2,6 @@
 // BackgroundStream, results as plain data.
 #include "segmentation_node.hpp"
 
-#include <algorithm>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -13,6 +12,7 @@
 #include "lccp/io/cloud_io.hpp"
 #include "lccp/io/config_file.hpp"
 #include "lccp/io/segments_json.hpp"
+#include "lccp/metrics/statistics.hpp"
 #include "lccp/pipeline/background_stream.hpp"
 #include "lccp/pipeline/push_source.hpp"
 
@@ -61,13 +61,6 @@ FrameOutput output_of(const FrameResult& result) {
   return out;
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 struct LatencySample {
   StageTimes stages;
   double back_projection_ms = 0;
@@ -79,7 +72,7 @@ std::vector<StageLatency> median_latencies(const std::vector<LatencySample>& sam
   const auto column = [&](const std::string& name, const auto& get) {
     std::vector<double> values;
     for (const LatencySample& sample : samples) values.push_back(get(sample));
-    latency.push_back({name, median(std::move(values))});
+    latency.push_back({name, percentile(std::move(values), 0.5)});
   };
   column("back_projection", [](const LatencySample& s) { return s.back_projection_ms; });
   for (const StageInfo& info : kStages) {

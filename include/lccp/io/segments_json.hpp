@@ -26,9 +26,9 @@ namespace lccp {
 //
 // The plane is normal . p + d = 0. Axes are listed as rows, each row one axis
 // (a column of the Eigen matrix), in the matrix's column order. Numbers are
-// the shortest decimal that reads back as the same float (std::to_chars: at
-// most 9 significant digits, lossless), null where a value is NaN or
-// infinite (JSON has neither).
+// the shortest decimal that reads back as the same float (at most 9
+// significant digits, lossless; a whole number without a fraction), null
+// where a value is NaN or infinite (JSON has neither).
 std::string encode_segments_json(std::uint64_t frame_index, std::uint64_t timestamp_us,
                                  const SceneSegmentation& scene);
 
