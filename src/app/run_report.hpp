@@ -61,7 +61,7 @@ class RunReport {
   const PipelineStats& stats() const { return stats_; }
   const CpuUse& cpu() const { return cpu_; }
   double frames_per_second() const;
-  Percentiles end_to_end_ms() const;  // over every completed frame
+  Percentiles end_to_end_ms() const;  // over every frame handed over, failed ones included
   // One per-frame time (e.g. a stage's) over the frames that
   // did not fail: a failed frame's later stages never ran.
   Percentiles percentiles_of(const std::function<double(const FrameRecord&)>& ms) const;

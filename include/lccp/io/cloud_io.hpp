@@ -56,10 +56,9 @@ enum class PcdEncoding { binary, binary_compressed };
 // `label` is the finest level (a part's id with two levels), so tools that
 // read PCL's `label` field see the segments; `object`, written when `objects`
 // is given (SceneSegmentation::objects: the id of each point's object), is one
-// more uint32 field (PCD v0.7 allows any field name). `binary` output is what
-// this function wrote before it had an encoding; it is the default so that
-// existing callers keep their bytes, and without `objects` the bytes are those
-// of the overload without it. Throws lccp::Error if the labels, objects,
+// more uint32 field (PCD v0.7 allows any field name). The files the tool
+// writes are binary_compressed (encode_labelled_cloud's default, --pcd-data);
+// this function defaults to `binary`. Throws lccp::Error if the labels, objects,
 // colours or width x height do not match the points, or there are none, or
 // (binary_compressed) the data exceeds PCL's limit of 2863311530 bytes (its
 // two uint32 sizes must hold 3/2 of it).
@@ -96,7 +95,7 @@ enum class LabelImageStyle { labels, overlay };
 // A width x height 8-bit RGB PNG of the labels, one pixel per point. With
 // `objects` (per point the id of its object, as SceneSegmentation::objects)
 // each point is coloured part_color(object, label): an object's parts have
-// hues of their own near its hue. Without it the bytes are as before.
+// hues of their own near its hue; without it each point is label_color(label).
 // Throws lccp::Error for an unorganized cloud or mismatched labels or objects.
 std::vector<std::uint8_t> encode_label_png(const PointCloud& cloud, const Labels& labels,
                                            LabelImageStyle style = LabelImageStyle::labels,
