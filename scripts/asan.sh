@@ -14,7 +14,7 @@ jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
 # python3 (the sanitizer runtime must come first); its C++ code is the library's.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
   -DLCCP_SANITIZE=address,undefined -DLCCP_BUILD_FUZZERS=ON -DLCCP_BUILD_PYTHON=OFF \
-  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_TEST_TIMEOUT=900 >/dev/null
+  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_TEST_TIMEOUT=900 -DLCCP_PRECOMPILE_HEADERS=ON >/dev/null
 # LCCP_ASAN_TARGET: build only that target (scripts/fuzz.sh); LCCP_ASAN_BUILD_ONLY=1: no tests.
 cmake --build build-asan -j"$jobs" ${LCCP_ASAN_TARGET:+--target "$LCCP_ASAN_TARGET"}
 [[ ${LCCP_ASAN_BUILD_ONLY:-0} == 1 ]] && exit 0
@@ -27,4 +27,6 @@ cmake --build build-asan -j"$jobs" ${LCCP_ASAN_TARGET:+--target "$LCCP_ASAN_TARG
 # loaded machine, over the 900 s limit under ASan there): its code runs under ASan in
 # RobotScene.BundledRecordingIdsStayStable's 62 frames.
 stress='Interrupt\.|OniMutationTest\.TwoHundred|IoFuzzRegression\.|RobotScene\.WholeScenePeriod'
-ctest --test-dir build-asan --output-on-failure -j"$jobs" -E "$stress" ${LCCP_CTEST_ARGS:-}
+# Twice as many tests as cores: tests wait on sensors, timers and child processes for
+# part of their time, which the other tests then use.
+ctest --test-dir build-asan --output-on-failure -j"$((2 * jobs))" -E "$stress" ${LCCP_CTEST_ARGS:-}

@@ -25,7 +25,9 @@ trap summary EXIT
 
 step install bash scripts/install-deps.sh
 step build bash scripts/build.sh -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF
-step ctest ctest --test-dir build --output-on-failure -j"$(nproc)"
+# Twice as many tests as cores: tests wait on sensors, timers and child processes for
+# part of their time, which the other tests then use.
+step ctest ctest --test-dir build --output-on-failure -j"$((2 * $(nproc)))"
 step asan bash scripts/asan.sh
 step tsan bash scripts/tsan.sh
 # The fuzz targets, `nproc` at a time (each built by asan.sh above); any finding fails.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # ThreadSanitizer over the concurrency tests (the lock-free union-find, the
-# pipeline's admission gate), the pipeline tests (the oneTBB flow graph) and
+# pipeline's admission gate, the background stream and push source), the
+# pipeline tests (the oneTBB flow graph) and
 # every stage's parallel loops on 2 and 4 threads, both supervoxel growths, on
 # the small synthetic scene (the mOSD frames reach them through the pipeline).
 # TSan only sees the synchronization of code built with -fsanitize=thread, so
@@ -21,6 +22,7 @@ if [[ ! -f $onetbb/lib/cmake/TBB/TBBConfig.cmake ]]; then
   cmake -S "$onetbb_src" -B build-tsan/onetbb-build -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DTBB_TEST=OFF -DTBB_EXAMPLES=OFF -DTBB_STRICT=OFF -DTBB_SANITIZE=thread -DTBBMALLOC_BUILD=OFF \
     -DTBB_DISABLE_HWLOC_AUTOMATIC_SEARCH=ON -DCMAKE_INSTALL_PREFIX="$PWD/$onetbb" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
     -DCMAKE_INSTALL_LIBDIR=lib >/dev/null
   cmake --build build-tsan/onetbb-build -j"$jobs"
   cmake --install build-tsan/onetbb-build >/dev/null
@@ -29,7 +31,7 @@ fi
 # 2. The tests, built with TSan against that oneTBB (TBB_DIR wins over the system's).
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLCCP_SANITIZE_THREADS=ON \
   -DTBB_DIR="$PWD/$onetbb/lib/cmake/TBB" -DCMAKE_PREFIX_PATH="$PWD/$onetbb" \
-  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_BUILD_PYTHON=OFF >/dev/null
+  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_BUILD_PYTHON=OFF -DLCCP_PRECOMPILE_HEADERS=ON >/dev/null
 cmake --build build-tsan -j"$jobs" --target lccp_concurrency_tests
 
 # 3. Run them. The test binary must load the TSan oneTBB, not Debian's; both
@@ -42,4 +44,4 @@ if [[ -z $loaded || $(readlink -f "$loaded") != $(readlink -f "$onetbb/lib/$(bas
   exit 1
 fi
 TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 ${TSAN_OPTIONS:-}" \
-  "$tests" --gtest_filter='FrameAdmission.*:UnionFind.*:Pipeline*:Threads/Determinism.*/box_on_table_*-*_1threads'
+  "$tests" --gtest_filter='FrameAdmission.*:UnionFind.*:Pipeline*:BackgroundStream.*:PushSource.*:Threads/Determinism.*/box_on_table_*-*_1threads'
