@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "../src/capture/depth_stream.hpp"
+#include "../src/capture/oni_16zt.hpp"
 #include "../src/capture/oni_check.hpp"
 #include "expect_error.hpp"
 #include "lccp/capture/openni_sources.hpp"

@@ -10,12 +10,10 @@
 #include <OpenNI.h>
 
 #include "lccp/capture/openni_sources.hpp"
+#include "depth_limits.hpp"
 #include "lccp/frame.hpp"
 
 namespace lccp::detail {
-
-// The largest depth image accepted from OpenNI2, per side.
-inline constexpr int kMaxDepthSide = 4096;
 
 // What an openni::VideoFrameRef says about its pixels, and the stream's declared mode.
 struct DepthFrameLayout {

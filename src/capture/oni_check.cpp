@@ -18,11 +18,6 @@
 // and Source/Core/OniRecorder.cpp, OniDataRecords.cpp (what the Recorder writes).
 #include "oni_check.hpp"
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -32,6 +27,8 @@
 
 #include "lccp/error.hpp"
 #include "depth_units.hpp"
+#include "mapped_file.hpp"
+#include "oni_16zt.hpp"
 #include "oni_format.hpp"
 
 namespace lccp::detail {
@@ -48,12 +45,6 @@ constexpr std::uint32_t kMaxFieldsBytes = 64 * 1024;
 constexpr std::uint32_t kMaxNodeNameBytes = 80;       // XN_MAX_NAME_LENGTH: the player copies into char[80]
 constexpr std::uint32_t kMaxPropertyNameBytes = 256;  // ONI_MAX_STR, the Recorder's limit
 
-constexpr std::uint32_t codec_id(char c1, char c2, char c3, char c4) {  // XN_CODEC_ID, XnCodecIDs.h
-  return std::uint32_t(std::uint8_t(c4)) << 24 | std::uint32_t(std::uint8_t(c3)) << 16 |
-         std::uint32_t(std::uint8_t(c2)) << 8 | std::uint8_t(c1);
-}
-constexpr std::uint32_t kCodec16zT = codec_id('1', '6', 'z', 'T');
-constexpr std::uint32_t kCodecNone = codec_id('N', 'O', 'N', 'E');
 constexpr std::uint32_t kNodeTypeDepth = 2;  // XN_NODE_TYPE_DEPTH
 
 // An inconsistency; turned into one lccp::Error line naming the file.
@@ -126,97 +117,7 @@ struct DepthNode {
   std::optional<RecordHeader> seek_table;
 };
 
-// The 16zT stream after its table (XnStreamUncompressDepth16ZWithEmbTable): each
-// output pixel is table[index]; bytes below 0xE0 carry two 4-bit steps (index -=
-// nibble - 6; a low nibble 0xD ends the byte, 0xF means a long step follows); 0xFF
-// means a long step follows; 0xE0 + n repeats the last pixel 2n times. A long step
-// is one byte b >= 0x80 (index -= b - 192) or two bytes (index = b << 8 | next).
-class Decoder16zT {
- public:
-  Decoder16zT(std::span<const std::uint8_t> in, std::span<std::uint16_t> out) : in_(in), out_(out) {}
 
-  std::optional<std::string> run() {
-    if (in_.size() < 2) return "16zT data shorter than its table size";
-    const std::size_t table_size = std::size_t(in_[0]) | std::size_t(in_[1]) << 8;
-    if (in_.size() < 2 + 2 * table_size + 2) return "16zT table of " + str(table_size) + " entries runs past the data";
-    table_ = in_.subspan(2, 2 * table_size);
-    at_ = 2 + 2 * table_size;
-    index_ = read16();
-    if (!emit(1)) return problem_;
-    while (at_ < in_.size()) {
-      if (!step()) return problem_;
-    }
-    if (written_ != out_.size()) return "16zT data decodes to " + str(written_) + " of " + str(out_.size()) + " pixels";
-    return std::nullopt;
-  }
-
- private:
-  std::uint16_t read16() {
-    const std::uint16_t value = static_cast<std::uint16_t>(in_[at_] | in_[at_ + 1] << 8);
-    at_ += 2;
-    return value;
-  }
-  bool fail(std::string text) {
-    problem_ = std::move(text);
-    return false;
-  }
-  // The failures, out of line: emit runs once or twice per pixel.
-  [[gnu::noinline]] bool index_past_table() { return fail("16zT index " + str(index_) + " past its table"); }
-  [[gnu::noinline]] bool too_many_pixels() { return fail("16zT data decodes to more than " + str(out_.size()) + " pixels"); }
-  bool emit(std::size_t count) {
-    if (2 * std::size_t{index_} >= table_.size()) [[unlikely]] return index_past_table();
-    if (count > out_.size() - written_) [[unlikely]] return too_many_pixels();
-    const auto value = static_cast<std::uint16_t>(table_[2 * index_] | table_[2 * index_ + 1] << 8);
-    std::uint16_t* out = out_.data() + written_;
-    written_ += count;
-    for (std::size_t i = 0; i < count; ++i) out[i] = value;
-    return true;
-  }
-  void add(int delta) { index_ = static_cast<std::uint16_t>(index_ - delta); }  // u16 arithmetic, as the player's
-
-  bool long_step() {
-    if (at_ >= in_.size()) return fail("16zT data ends inside a step");
-    const std::uint8_t b = in_[at_++];
-    if (b & 0x80) {
-      add(int(b) - 192);
-    } else {
-      if (at_ >= in_.size()) return fail("16zT data ends inside a step");
-      index_ = static_cast<std::uint16_t>(b << 8 | in_[at_++]);
-    }
-    return emit(1);
-  }
-
-  bool step() {
-    const std::uint8_t c = in_[at_++];
-    if (c == 0xFF) return long_step();
-    if (c >= 0xE0) return emit(2 * std::size_t(c - 0xE0));
-    add(int(c >> 4) - 6);
-    if (!emit(1)) return false;
-    const int low = c & 0x0F;
-    if (low == 0x0F) return long_step();
-    if (low == 0x0D) return true;
-    add(low - 6);
-    return emit(1);
-  }
-
-  std::span<const std::uint8_t> in_;
-  std::span<std::uint16_t> out_;
-  std::span<const std::uint8_t> table_;
-  std::size_t at_ = 0;
-  std::size_t written_ = 0;
-  std::uint16_t index_ = 0;
-  std::string problem_;
-};
-
-}  // namespace
-
-bool is_16zt(std::uint32_t codec) { return codec == kCodec16zT; }
-
-std::optional<std::string> decode_16zt(std::span<const std::uint8_t> in, std::span<std::uint16_t> out) {
-  return Decoder16zT(in, out).run();
-}
-
-namespace {
 
 // Walks the records in file order, as OpenNI2's player meets them, and checks each.
 class OniChecker {
@@ -430,8 +331,8 @@ class OniChecker {
   }
 
   static void check_mode(const DepthNode& node) {
-    if (node.width == 0 || node.height == 0 || node.width > kMaxOniDepthSide || node.height > kMaxOniDepthSide) {
-      corrupt("depth mode " + str(node.width) + "x" + str(node.height) + " outside 1.." + str(kMaxOniDepthSide) + " a side");
+    if (node.width == 0 || node.height == 0 || node.width > kMaxDepthSide || node.height > kMaxDepthSide) {
+      corrupt("depth mode " + str(node.width) + "x" + str(node.height) + " outside 1.." + str(kMaxDepthSide) + " a side");
     }
     if (2ull * node.width * node.height > kOniPlayerDataMaxBytes) {
       corrupt("depth mode " + str(node.width) + "x" + str(node.height) + " exceeds OpenNI2's player frame buffer");
@@ -573,39 +474,6 @@ class OniChecker {
   std::optional<DepthNode> node_;
   std::vector<std::uint64_t> record_offsets_;
   std::vector<std::uint16_t> pixels_;
-};
-
-// A file mapped read-only for the lifetime of the object.
-class MappedFile {
- public:
-  explicit MappedFile(const std::filesystem::path& path) {
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd_ < 0) throw Error("cannot open " + path.string() + ": " + std::strerror(errno));
-    struct stat info {};
-    if (::fstat(fd_, &info) == 0) {
-      size_ = static_cast<std::size_t>(info.st_size);
-      void* data = size_ == 0 ? nullptr : ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd_, 0);
-      if (data != MAP_FAILED) {
-        data_ = static_cast<const std::uint8_t*>(data);
-        return;
-      }
-    }
-    const std::string reason = std::strerror(errno);
-    ::close(fd_);
-    throw Error("cannot read " + path.string() + ": " + reason);
-  }
-  ~MappedFile() {
-    if (data_ != nullptr) ::munmap(const_cast<std::uint8_t*>(data_), size_);
-    if (fd_ >= 0) ::close(fd_);
-  }
-  MappedFile(const MappedFile&) = delete;
-  MappedFile& operator=(const MappedFile&) = delete;
-  std::span<const std::uint8_t> bytes() const { return {data_, size_}; }
-
- private:
-  int fd_ = -1;
-  const std::uint8_t* data_ = nullptr;
-  std::size_t size_ = 0;
 };
 
 }  // namespace

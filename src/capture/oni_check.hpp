@@ -7,20 +7,19 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <span>
-#include <string>
 #include <string_view>
 #include <vector>
+
+#include "depth_limits.hpp"
 
 namespace lccp::detail {
 
 // What we accept, besides a well-formed file: one depth stream (OpenNI2's
 // Recorder writes exactly this for a depth-only recording), 16zT-compressed or
-// uncompressed, in 1 mm or 100 um units, at most this many pixels a side, and a
-// frame that fits OpenNI2's player buffer (PlayerNode::DATA_MAX_SIZE,
+// uncompressed, in 1 mm or 100 um units, at most kMaxDepthSide pixels a side
+// (depth_limits.hpp), and a frame that fits OpenNI2's player buffer (PlayerNode::DATA_MAX_SIZE,
 // 1600 x 1200 x 3 bytes).
-inline constexpr int kMaxOniDepthSide = 4096;
 inline constexpr std::uint64_t kOniPlayerDataMaxBytes = 1600ull * 1200 * 3;
 
 // Where one depth frame's NewData record lies in the file.
@@ -50,13 +49,5 @@ OniRecordingFacts check_oni_recording(std::span<const std::uint8_t> bytes, std::
 
 // The same for a file, mapped read-only. Throws lccp::Error naming the path.
 OniRecordingFacts check_oni_file(const std::filesystem::path& path);
-
-// Whether `codec` (OniRecordingFacts::codec) is 16zT; otherwise frames are uncompressed.
-bool is_16zt(std::uint32_t codec);
-
-// Decodes one 16zT frame (XnStreamCompression.cpp, XnStreamUncompressDepth16ZWithEmbTable)
-// into exactly `out.size()` pixels. Returns nullopt on success, or what is wrong:
-// a read past the input, a table index past the table, too many or too few pixels.
-std::optional<std::string> decode_16zt(std::span<const std::uint8_t> in, std::span<std::uint16_t> out);
 
 }  // namespace lccp::detail

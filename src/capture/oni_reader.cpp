@@ -4,6 +4,7 @@
 
 #include "depth_units.hpp"
 #include "lccp/error.hpp"
+#include "oni_16zt.hpp"
 
 namespace lccp::detail {
 namespace {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "lccp/frame.hpp"
-#include "oni_check.hpp"
+#include "oni_check.hpp"  // OniRecordingFacts
 
 namespace lccp::detail {
 
