@@ -65,7 +65,8 @@ message(STATUS "ROS 1 found: the rosbag source and the lccp_ros node are built")
 # Compiles `sources` (of the current folder) as C++17 with ROS's headers as system
 # headers, so -Wall -Wextra -Werror holds for our code only.
 function(lccp_ros_cxx17 target)
-  set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS "-std=c++17")
+  # No precompiled headers there: they are C++20 (LCCP_PRECOMPILE_HEADERS).
+  set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS "-std=c++17" SKIP_PRECOMPILE_HEADERS ON)
   target_include_directories(${target} SYSTEM PRIVATE ${LCCP_ROS_INCLUDE_DIRS})
 endfunction()
 
