@@ -65,8 +65,29 @@
 namespace lccp {
 namespace {
 
-using Occupied = detail::OccupiedCell;
-using detail::TrackedFrame;
+// A segment's occupied cell in one frame: the cell's key (grid, x, y, z) and
+// the segment, objects 0..object_count-1 first, then the parts.
+struct Occupied {
+  std::uint64_t cell = 0;
+  std::uint32_t segment = 0;
+};
+
+// One frame's segments as the tracker keeps them.
+struct TrackedFrame {
+  std::array<std::vector<Occupied>, 2> cells;  // per grid: ascending (cell, segment), no repeats
+  std::vector<std::uint32_t> sizes;            // per segment: how many cells it occupies, both grids
+  std::vector<std::uint32_t> ids;              // per segment: its stable id
+  std::vector<std::uint32_t> owner_ids;        // per part: the stable id of its object
+  std::uint32_t object_count = 0;
+};
+
+// Ids of objects that merged into a neighbour ("Merged and split again" above):
+// each as a segment of its own with the cells it had when last seen.
+struct AbsorbedIds {
+  TrackedFrame segments;                // every segment an object; ids: the absorbed ids
+  std::vector<std::uint32_t> carriers;  // per absorbed id: the id of the object that took it in
+  std::vector<std::uint32_t> ages;      // per absorbed id: frames since it was absorbed
+};
 
 // 1 cm cells: twice and more the 3-5 mm an object moves between frames at 30 Hz
 // (so most of its cells stay occupied), and small next to table-top objects
@@ -580,7 +601,7 @@ void match_levels(std::vector<Candidate> found, const TrackedFrame& now, const T
 
 // Objects of this frame still without an id that lie where an absorbed object
 // was (IoU >= kMinOverlap with its last cells) take its id back, best first.
-void reclaim_absorbed(const detail::AbsorbedIds& absorbed, TrackedFrame& now, std::vector<char>& reclaimed) {
+void reclaim_absorbed(const AbsorbedIds& absorbed, TrackedFrame& now, std::vector<char>& reclaimed) {
   if (absorbed.segments.ids.empty()) return;
   std::vector<Candidate> found =
       candidates(now, absorbed.segments, shared_counts(now, absorbed.segments));
@@ -623,10 +644,10 @@ std::array<std::vector<Occupied>, 2> chosen_cells(const TrackedFrame& from, cons
 // The absorbed ids that go on: those kept (by `keep`: the new carrier id, kNone
 // to drop) of `old`, one frame older, then the new absorptions of `before`'s
 // objects at age 0.
-detail::AbsorbedIds next_absorbed(const detail::AbsorbedIds& old, const std::vector<std::uint32_t>& keep,
+AbsorbedIds next_absorbed(const AbsorbedIds& old, const std::vector<std::uint32_t>& keep,
                                   const TrackedFrame& before,
                                   const std::vector<std::pair<std::uint32_t, std::uint32_t>>& absorbed_now) {
-  detail::AbsorbedIds next;
+  AbsorbedIds next;
   std::vector<std::uint32_t> old_index(old.segments.ids.size(), kNone), new_index(before.ids.size(), kNone);
   const auto add = [&](std::uint32_t id, std::uint32_t size, std::uint32_t carrier, std::uint32_t age) {
     next.segments.ids.push_back(id);
@@ -652,7 +673,7 @@ detail::AbsorbedIds next_absorbed(const detail::AbsorbedIds& old, const std::vec
 // on with its carrier while the carrier is in this frame (or with the object
 // that absorbed the carrier itself) and it is younger than kAbsorbedFrames;
 // previous objects absorbed now join.
-detail::AbsorbedIds carry_absorbed(const detail::AbsorbedIds& old, const std::vector<char>& reclaimed,
+AbsorbedIds carry_absorbed(const AbsorbedIds& old, const std::vector<char>& reclaimed,
                                    const TrackedFrame& now, const TrackedFrame& before,
                                    const std::vector<char>& before_taken, const SharedCounts& counts) {
   const auto absorbed_now = absorptions(now, before, before_taken, counts);
@@ -671,7 +692,15 @@ detail::AbsorbedIds carry_absorbed(const detail::AbsorbedIds& old, const std::ve
 
 }  // namespace
 
-SegmentTracker::SegmentTracker(std::uint32_t first_id) : next_id_(first_id) {}
+struct SegmentTracker::History {
+  TrackedFrame previous;  // what the next frame is matched against
+  AbsorbedIds absorbed;   // ids merged into a previous object, which a split gives back
+};
+
+SegmentTracker::SegmentTracker(std::uint32_t first_id) : next_id_(first_id), history_(std::make_unique<History>()) {}
+SegmentTracker::~SegmentTracker() = default;
+SegmentTracker::SegmentTracker(SegmentTracker&&) noexcept = default;
+SegmentTracker& SegmentTracker::operator=(SegmentTracker&&) noexcept = default;
 
 TrackedIds SegmentTracker::update(const FrameSegments& frame) {
   check_frame(frame);
@@ -682,11 +711,11 @@ TrackedIds SegmentTracker::update(const FrameSegments& frame) {
   now.sizes = segment_sizes(now.cells, layout.size());
   now.object_count = layout.objects;
   now.ids.assign(layout.size(), kNone);
-  std::vector<char> before_taken(previous_.ids.size(), 0);
-  const SharedCounts counts = shared_counts(now, previous_);
-  match_levels(candidates(now, previous_, counts), now, previous_, part_object, now.ids, before_taken);
-  std::vector<char> reclaimed(absorbed_.segments.ids.size(), 0);
-  reclaim_absorbed(absorbed_, now, reclaimed);
+  std::vector<char> before_taken(history_->previous.ids.size(), 0);
+  const SharedCounts counts = shared_counts(now, history_->previous);
+  match_levels(candidates(now, history_->previous, counts), now, history_->previous, part_object, now.ids, before_taken);
+  std::vector<char> reclaimed(history_->absorbed.segments.ids.size(), 0);
+  reclaim_absorbed(history_->absorbed, now, reclaimed);
 
   TrackedIds out;
   for (std::uint32_t& id : now.ids) {
@@ -695,13 +724,13 @@ TrackedIds SegmentTracker::update(const FrameSegments& frame) {
     out.new_ids.push_back(id = next_id_++);
   }
   for (std::size_t v = 0; v < before_taken.size(); ++v)
-    if (!before_taken[v]) out.gone_ids.push_back(previous_.ids[v]);
+    if (!before_taken[v]) out.gone_ids.push_back(history_->previous.ids[v]);
   std::sort(out.gone_ids.begin(), out.gone_ids.end());
   for (const std::uint32_t owner : part_object) now.owner_ids.push_back(owner == kNone ? kNone : now.ids[owner]);
   out.object_ids.assign(now.ids.begin(), now.ids.begin() + layout.objects);
   out.part_ids.assign(now.ids.begin() + layout.objects, now.ids.end());
-  absorbed_ = carry_absorbed(absorbed_, reclaimed, now, previous_, before_taken, counts);
-  previous_ = std::move(now);
+  history_->absorbed = carry_absorbed(history_->absorbed, reclaimed, now, history_->previous, before_taken, counts);
+  history_->previous = std::move(now);
   return out;
 }
 

@@ -320,9 +320,13 @@ void check(const Camera& camera) {
 
 }  // namespace
 
+struct TabletopScene::NoiseTable {
+  detail::NormalDeviates normal;
+};
+
 TabletopScene::TabletopScene(Camera camera, std::uint64_t noise_seed) : camera_(camera), noise_seed_(noise_seed) {
   check(camera_);
-  normal_deviates_ = std::make_shared<const detail::NormalDeviates>();
+  noise_table_ = std::make_shared<const NoiseTable>();
 }
 
 SyntheticFrame TabletopScene::render(std::uint64_t frame_index) const {
@@ -334,7 +338,7 @@ SyntheticFrame TabletopScene::render(std::uint64_t frame_index) const {
   SurfaceImage surface = cast_static_scene(grid, pose);
   const auto parts = detail::object_parts_at(t_s);
   for (const Part& part : parts) cast_part(view_of(part, pose, grid), grid, handle, surface);
-  return measure(std::move(surface), grid, camera_, *normal_deviates_, detail::frame_key(noise_seed_, frame_index));
+  return measure(std::move(surface), grid, camera_, noise_table_->normal, detail::frame_key(noise_seed_, frame_index));
 }
 
 }  // namespace lccp::synthetic

@@ -2,8 +2,9 @@
 // Stable ids across the frames of a stream: each frame's objects and parts are
 // matched to the previous frame's, so the same physical object keeps its id
 // while it stays in view.
-#include <array>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -28,35 +29,6 @@ struct TrackedIds {
   std::vector<std::uint32_t> gone_ids;    // ids of the previous frame not in this one, ascending
 };
 
-namespace detail {
-
-// A segment's occupied cell in one frame (src/objects/tracking.cpp): the cell's
-// key (grid, x, y, z) and the segment, objects 0..object_count-1 first, then
-// the parts.
-struct OccupiedCell {
-  std::uint64_t cell = 0;
-  std::uint32_t segment = 0;
-};
-
-// One frame's segments as the tracker keeps them.
-struct TrackedFrame {
-  std::array<std::vector<OccupiedCell>, 2> cells;  // per grid: ascending (cell, segment), no repeats
-  std::vector<std::uint32_t> sizes;                // per segment: how many cells it occupies, both grids
-  std::vector<std::uint32_t> ids;                  // per segment: its stable id
-  std::vector<std::uint32_t> owner_ids;            // per part: the stable id of its object
-  std::uint32_t object_count = 0;
-};
-
-// Ids of objects that merged into a neighbour (tracking.cpp, "Merged and split
-// again"): each as a segment of its own with the cells it had when last seen.
-struct AbsorbedIds {
-  TrackedFrame segments;                // every segment an object; ids: the absorbed ids
-  std::vector<std::uint32_t> carriers;  // per absorbed id: the id of the object that took it in
-  std::vector<std::uint32_t> ages;      // per absorbed id: frames since it was absorbed
-};
-
-}  // namespace detail
-
 class SegmentTracker {
  public:
   // Ids are handed out from first_id up, never reused; objects and parts share
@@ -77,10 +49,14 @@ class SegmentTracker {
   // fit the frame (sizes, a label above its count) or the ids are used up.
   TrackedIds update(const FrameSegments& frame);
 
+  ~SegmentTracker();
+  SegmentTracker(SegmentTracker&&) noexcept;
+  SegmentTracker& operator=(SegmentTracker&&) noexcept;
+
  private:
+  struct History;  // the previous frame's cells and ids, and the absorbed ids (tracking.cpp)
   std::uint32_t next_id_;
-  detail::TrackedFrame previous_;  // what the next frame is matched against
-  detail::AbsorbedIds absorbed_;   // ids merged into a previous object, which a split gives back
+  std::unique_ptr<History> history_;
 };
 
 }  // namespace lccp

@@ -13,9 +13,6 @@
 #include "lccp/frame.hpp"
 
 namespace lccp::synthetic {
-namespace detail {
-class NormalDeviates;
-}  // namespace detail
 
 // Ground-truth labels per pixel, in the convention of the Object Segmentation
 // Database (OSD, Richtsfeld et al. 2012) and mOSD: 0 no data, 1-9 the support
@@ -89,8 +86,9 @@ class TabletopScene {
  private:
   Camera camera_;
   std::uint64_t noise_seed_;
-  // The noise model's table (16 KB), computed once, shared by copies.
-  std::shared_ptr<const detail::NormalDeviates> normal_deviates_;
+  // The noise model's table (16 KB, tabletop_scene.cpp), computed once, shared by copies.
+  struct NoiseTable;
+  std::shared_ptr<const NoiseTable> noise_table_;
 };
 
 }  // namespace lccp::synthetic
