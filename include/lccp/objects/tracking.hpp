@@ -4,23 +4,12 @@
 // while it stays in view.
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "lccp/cloud.hpp"
+#include "lccp/core/occupied_cells.hpp"  // FrameSegments
 
 namespace lccp {
-
-// One frame's segments at both levels, as dense per-point labels (0 = none).
-struct FrameSegments {
-  std::span<const Eigen::Vector3f> points;  // metres
-  const Labels* objects = nullptr;  // per point: object 1..object_count
-  std::uint32_t object_count = 0;
-  const Labels* parts = nullptr;  // per point: part 1..part_count; null: no part level
-  std::uint32_t part_count = 0;
-};
 
 struct TrackedIds {
   std::vector<std::uint32_t> object_ids;  // [object - 1]: its stable id
