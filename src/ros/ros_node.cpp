@@ -138,6 +138,16 @@ void fill_header(std_msgs::Header& header, const FrameOutput& output) {
   header.frame_id = output.frame_id;
 }
 
+// A PointCloud2 or an Image with the frame's header and layout (width x height).
+template <class Message>
+Message frame_message(const FrameOutput& output) {
+  Message message;
+  fill_header(message.header, output);
+  message.width = output.width;
+  message.height = output.height;
+  return message;
+}
+
 sensor_msgs::PointField point_field(const char* name, std::uint32_t offset, std::uint8_t datatype) {
   sensor_msgs::PointField field;
   field.name = name;
@@ -149,10 +159,7 @@ sensor_msgs::PointField point_field(const char* name, std::uint32_t offset, std:
 
 // x y z float32, label and object uint32: 20 bytes a point, in the input's layout.
 sensor_msgs::PointCloud2 labels_message(const FrameOutput& output) {
-  sensor_msgs::PointCloud2 cloud;
-  fill_header(cloud.header, output);
-  cloud.width = output.width;
-  cloud.height = output.height;
+  auto cloud = frame_message<sensor_msgs::PointCloud2>(output);
   cloud.fields = {point_field("x", 0, sensor_msgs::PointField::FLOAT32),
                   point_field("y", 4, sensor_msgs::PointField::FLOAT32),
                   point_field("z", 8, sensor_msgs::PointField::FLOAT32),
@@ -174,10 +181,7 @@ sensor_msgs::PointCloud2 labels_message(const FrameOutput& output) {
 }
 
 sensor_msgs::Image label_image_message(const FrameOutput& output) {
-  sensor_msgs::Image image;
-  fill_header(image.header, output);
-  image.width = output.width;
-  image.height = output.height;
+  auto image = frame_message<sensor_msgs::Image>(output);
   image.encoding = "rgb8";
   image.is_bigendian = 0;
   image.step = 3 * output.width;
