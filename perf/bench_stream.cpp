@@ -30,6 +30,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
 #include "lccp/process.hpp"
@@ -403,52 +404,56 @@ void print_report(const Options& options, const std::string& command, const std:
               targets.max_p99_ms, targets.threads, any ? "hold for at least one K" : "missed for every K");
 }
 
+nlohmann::ordered_json run_json(const RunResult& r) {
+  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
+  for (std::size_t s = 0; s < StageMedians::kCount; ++s) stages[StageMedians::kNames[s]] = r.stages.ms[s];
+  return {{"mode", mode_name(r.mode)},
+          {"threads", r.threads},
+          {"inflight", r.inflight},
+          {"received", r.stats.frames_received},
+          {"completed", r.stats.frames_completed},
+          {"dropped", r.stats.frames_dropped},
+          {"frame_errors", r.frame_errors},
+          {"wall_s", r.stats.wall_seconds},
+          {"frames_per_s", r.frames_per_s},
+          {"cpu_per_wall", r.cpu_per_wall},
+          {"e2e_ms", {{"p50", r.p50}, {"p95", r.p95}, {"p99", r.p99}, {"max", r.max}}},
+          {"stage_median_ms", std::move(stages)}};
+}
+
+// null when the reference did not run; PCL's has its parts' medians too.
+nlohmann::ordered_json reference_json(const Reference& r, bool pcl) {
+  if (!r.ran) return nullptr;
+  nlohmann::ordered_json json = {{"frames", r.frames},   {"median_ms", r.median_ms},      {"mean_ms", r.mean_ms},
+                                 {"p95_ms", r.p95_ms}, {"frames_per_s", r.frames_per_s}};
+  if (pcl) {
+    json.update({{"supervoxels_median_ms", r.supervoxels_median_ms},
+                 {"lccp_median_ms", r.lccp_median_ms},
+                 {"convert_median_ms", r.convert_median_ms}});
+  }
+  return json;
+}
+
+// The results as JSON (nlohmann/json, https://json.nlohmann.me/), indented by two spaces.
 void write_json(const fs::path& path, const Options& options, const std::string& command, const std::string& date,
                 const std::string& load_before, const std::string& load_after, std::size_t frame_count,
                 const std::vector<RunResult>& runs, const Reference& ours, const Reference& pcl) {
   std::ofstream out(path);
   if (!out) throw lccp::Error("cannot write " + path.string());
-  const auto quoted = [](const std::string& s) {
-    std::string q = "\"";
-    for (char c : s) {
-      if (c == '"' || c == '\\') q += '\\';
-      q += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
-    }
-    return q + "\"";
-  };
-  out << "{\n  \"date\": " << quoted(date) << ",\n  \"command\": " << quoted(command)
-      << ",\n  \"load_before\": " << quoted(load_before) << ",\n  \"load_after\": " << quoted(load_after)
-      << ",\n  \"recording\": " << quoted(options.recording) << ",\n  \"recording_frames\": " << frame_count
-      << ",\n  \"rounds\": " << options.rounds << ",\n  \"paced_fps\": " << options.fps << ",\n  \"runs\": [\n";
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const RunResult& r = runs[i];
-    out << "    {\"mode\": \"" << mode_name(r.mode) << "\", \"threads\": " << r.threads << ", \"inflight\": " << r.inflight
-        << ", \"received\": " << r.stats.frames_received << ", \"completed\": " << r.stats.frames_completed
-        << ", \"dropped\": " << r.stats.frames_dropped << ", \"frame_errors\": " << r.frame_errors
-        << ", \"wall_s\": " << r.stats.wall_seconds << ", \"frames_per_s\": " << r.frames_per_s
-        << ", \"cpu_per_wall\": " << r.cpu_per_wall << ", \"e2e_ms\": {\"p50\": " << r.p50 << ", \"p95\": " << r.p95
-        << ", \"p99\": " << r.p99 << ", \"max\": " << r.max << "}, \"stage_median_ms\": {";
-    for (std::size_t s = 0; s < StageMedians::kCount; ++s)
-      out << (s ? ", " : "") << "\"" << StageMedians::kNames[s] << "\": " << r.stages.ms[s];
-    out << "}}" << (i + 1 < runs.size() ? "," : "") << "\n";
-  }
-  const auto reference = [&](const char* name, const Reference& r, bool last) {
-    out << "  \"" << name << "\": ";
-    if (!r.ran) {
-      out << "null" << (last ? "\n" : ",\n");
-      return;
-    }
-    out << "{\"frames\": " << r.frames << ", \"median_ms\": " << r.median_ms << ", \"mean_ms\": " << r.mean_ms
-        << ", \"p95_ms\": " << r.p95_ms << ", \"frames_per_s\": " << r.frames_per_s;
-    if (std::string(name) == "pcl")
-      out << ", \"supervoxels_median_ms\": " << r.supervoxels_median_ms << ", \"lccp_median_ms\": " << r.lccp_median_ms
-          << ", \"convert_median_ms\": " << r.convert_median_ms;
-    out << "}" << (last ? "\n" : ",\n");
-  };
-  out << "  ],\n  \"ours_single_frame_threads\": " << options.reference_threads << ",\n";
-  reference("ours_single_frame", ours, false);
-  reference("pcl", pcl, true);
-  out << "}\n";
+  nlohmann::ordered_json json = {{"date", date},
+                                 {"command", command},
+                                 {"load_before", load_before},
+                                 {"load_after", load_after},
+                                 {"recording", options.recording},
+                                 {"recording_frames", frame_count},
+                                 {"rounds", options.rounds},
+                                 {"paced_fps", options.fps},
+                                 {"runs", nlohmann::ordered_json::array()}};
+  for (const RunResult& r : runs) json["runs"].push_back(run_json(r));
+  json["ours_single_frame_threads"] = options.reference_threads;
+  json["ours_single_frame"] = reference_json(ours, false);
+  json["pcl"] = reference_json(pcl, true);
+  out << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
 }
 
 }  // namespace

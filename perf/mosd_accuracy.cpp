@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
 #include "lccp/process.hpp"
@@ -446,54 +447,45 @@ class Report {
   const std::vector<Method>& methods_;
 };
 
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += ' ';
-    } else {
-      out += c;
-    }
+nlohmann::ordered_json method_json(const MethodRun& r, Method m) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  if (!r.error.empty()) json["error"] = r.error;
+  json.update({{"ms", r.ms}, {"supervoxels", r.supervoxels}, {"segments", r.segments},
+               {"unlabelled_finite", r.unlabelled_finite}});
+  if (m == Method::pcl) json.update({{"supervoxels_ms", r.pcl_supervoxels_ms}, {"lccp_ms", r.pcl_lccp_ms}});
+  for (GroundTruth g : kGroundTruths) {
+    const auto& sc = r.scores[static_cast<int>(g)];
+    if (!sc) continue;
+    nlohmann::ordered_json scores = {{"N_G", sc->ground_truth_regions}};
+    for (const ScoreColumn& c : kColumns) scores[c.name] = (*sc).*c.field;
+    json[gt_name(g)] = std::move(scores);
   }
-  return out;
+  return json;
 }
 
+nlohmann::ordered_json scene_json(const SceneResult& s, const std::vector<Method>& methods) {
+  nlohmann::ordered_json json = {{"scene", s.name}, {"category", category_of(s.index)},
+                                 {"organized", s.organized}, {"finite_points", s.finite_points}};
+  if (!s.error.empty()) json["error"] = s.error;
+  for (Method m : methods) json[m == Method::ours ? "ours" : "pcl"] = method_json(s.run(m), m);
+  return json;
+}
+
+// The results as JSON (nlohmann/json, https://json.nlohmann.me/), indented by two spaces.
 void write_json(const fs::path& path, const std::vector<SceneResult>& scenes, const std::vector<Method>& methods,
                 const std::string& date, const std::string& config_source, const std::string& config_text,
                 const fs::path& dir, std::size_t threads) {
   std::ofstream out(path);
   if (!out) throw lccp::Error("cannot write " + path.string());
-  out << "{\n  \"date\": \"" << json_escape(date) << "\",\n  \"mosd_dir\": \"" << json_escape(dir.string())
-      << "\",\n  \"threads\": " << threads << ",\n  \"config_source\": \"" << json_escape(config_source)
-      << "\",\n  \"config\": \"" << json_escape(config_text) << "\",\n  \"ignored_gt_labels\": [0, 9],\n"
-      << "  \"scenes\": [";
-  for (std::size_t si = 0; si < scenes.size(); ++si) {
-    const SceneResult& s = scenes[si];
-    out << (si > 0 ? "," : "") << "\n    {\"scene\": \"" << s.name << "\", \"category\": \"" << category_of(s.index)
-        << "\", \"organized\": " << (s.organized ? "true" : "false") << ", \"finite_points\": " << s.finite_points;
-    if (!s.error.empty()) out << ", \"error\": \"" << json_escape(s.error) << "\"";
-    for (Method m : methods) {
-      const MethodRun& r = s.run(m);
-      out << ",\n     \"" << (m == Method::ours ? "ours" : "pcl") << "\": {";
-      if (!r.error.empty()) out << "\"error\": \"" << json_escape(r.error) << "\", ";
-      out << "\"ms\": " << r.ms << ", \"supervoxels\": " << r.supervoxels << ", \"segments\": " << r.segments
-          << ", \"unlabelled_finite\": " << r.unlabelled_finite;
-      if (m == Method::pcl) out << ", \"supervoxels_ms\": " << r.pcl_supervoxels_ms << ", \"lccp_ms\": " << r.pcl_lccp_ms;
-      for (GroundTruth g : kGroundTruths) {
-        const auto& sc = r.scores[static_cast<int>(g)];
-        if (!sc) continue;
-        out << ", \"" << gt_name(g) << "\": {\"N_G\": " << sc->ground_truth_regions;
-        for (const ScoreColumn& c : kColumns) out << ", \"" << c.name << "\": " << (*sc).*c.field;
-        out << "}";
-      }
-      out << "}";
-    }
-    out << "}";
-  }
-  out << "\n  ]\n}\n";
+  nlohmann::ordered_json json = {{"date", date},
+                                 {"mosd_dir", dir.string()},
+                                 {"threads", threads},
+                                 {"config_source", config_source},
+                                 {"config", config_text},
+                                 {"ignored_gt_labels", {0, 9}},
+                                 {"scenes", nlohmann::ordered_json::array()}};
+  for (const SceneResult& s : scenes) json["scenes"].push_back(scene_json(s, methods));
+  out << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
 }
 
 std::string now_string() {
