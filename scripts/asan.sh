@@ -27,6 +27,7 @@ cmake --build build-asan -j"$jobs" ${LCCP_ASAN_TARGET:+--target "$LCCP_ASAN_TARG
 # loaded machine, over the 900 s limit under ASan there): its code runs under ASan in
 # RobotScene.BundledRecordingIdsStayStable's 62 frames.
 stress='Interrupt\.|OniMutationTest\.TwoHundred|IoFuzzRegression\.|RobotScene\.WholeScenePeriod'
-# As many tests as cores: instrumented tests are CPU- and memory-bound, and twice as
-# many at once took longer (ASan tests 731 s at -j4 against 534 s at -j2, fresh clones).
+# As many tests as cores: instrumented tests are CPU- and memory-bound; twice as many
+# at once made them slower overall (a fresh clone's ASan tests: 534 s at -j2, 731 s at
+# -j4, of which a few minutes shared the machine with another build).
 ctest --test-dir build-asan --output-on-failure -j"$jobs" -E "$stress" ${LCCP_CTEST_ARGS:-}
