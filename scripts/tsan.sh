@@ -31,7 +31,7 @@ fi
 # 2. The tests, built with TSan against that oneTBB (TBB_DIR wins over the system's).
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLCCP_SANITIZE_THREADS=ON \
   -DTBB_DIR="$PWD/$onetbb/lib/cmake/TBB" -DCMAKE_PREFIX_PATH="$PWD/$onetbb" \
-  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_BUILD_PYTHON=OFF -DLCCP_PRECOMPILE_HEADERS=ON >/dev/null
+  -DLCCP_BUILD_TESTS=ON -DLCCP_BUILD_PERF=OFF -DLCCP_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-tsan -j"$jobs" --target lccp_concurrency_tests
 
 # 3. Run them. The test binary must load the TSan oneTBB, not Debian's; both
