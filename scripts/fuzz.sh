@@ -14,9 +14,7 @@ target=${1:?$usage}
 seconds=${2:?$usage}
 [[ -f tests/fuzz/fuzz_$target.cpp ]] || { echo "$usage" >&2; exit 2; }
 
-# LCCP_FUZZ_BUILT=1: build-asan already holds the target (scripts/test.sh builds every
-# target first, then runs two at a time: two builds of one tree must not race).
-[[ ${LCCP_FUZZ_BUILT:-0} == 1 ]] || LCCP_ASAN_BUILD_ONLY=1 LCCP_ASAN_TARGET="fuzz_$target" bash scripts/asan.sh
+LCCP_ASAN_BUILD_ONLY=1 LCCP_ASAN_TARGET="fuzz_$target" bash scripts/asan.sh
 source tests/sanitizers/options.sh
 binary=$PWD/build-asan/tests/fuzz/fuzz_$target
 findings=$PWD/build-asan/fuzz-findings/$target
