@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for a while:  scripts/fuzz.sh TARGET SECONDS
-# TARGET is one of tests/fuzz/fuzz_<TARGET>.cpp (pcd, ply, config, uri, oni). The
+# TARGET is one of tests/fuzz/fuzz_<TARGET>.cpp (pcd, ply, config, uri, oni, view). The
 # target is built in build-asan (clang, ASan + UBSan; scripts/asan.sh) if needed and
 # started on a temporary copy of its seed corpus tests/fuzz/corpus/TARGET, so the
 # repository is not modified. A crash, a sanitizer report, an exception other than

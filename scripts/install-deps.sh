@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config zlib1g-dev
   libeigen3-dev libtbb-dev libpcl-dev libopenni2-dev
-  libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libboost-dev
   libgtest-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
   libroscpp-dev libnodeletlib-dev libnodeletlib-tools pluginlib-dev librosbag-dev
@@ -13,6 +13,7 @@ packages=(
   ros-core python3-rospy python3-rosbag python3-rostest
   python3-sensor-msgs python3-visualization-msgs python3-diagnostic-msgs
   clang libclang-rt-14-dev
+  chromium chromium-driver python3-selenium python3-pil
 )
 
 missing=()

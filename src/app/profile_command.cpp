@@ -21,6 +21,7 @@ struct ProfileCommandOptions {
   bool realtime = false;
   std::string directory = "profile-out";
   bool quiet = false;
+  ViewOptions view;
 };
 
 std::string joined(const std::vector<std::string>& words) {
@@ -49,11 +50,14 @@ int run_profile(const ProfileCommandOptions& options, std::stop_token stop) {
   const ProfileSetup setup = profile_setup(options, *source);
   const std::filesystem::path directory(options.directory);
   create_output_folder(directory);
-  const PipelineRun run = run_pipeline(*source, segmenter, {options.frames_in_flight, !options.quiet}, stop);
+  const auto view = options.view.start(stop);
+  const PipelineRun run = run_pipeline(*source, segmenter, {options.frames_in_flight, !options.quiet, view.get()}, stop);
   write_profile_reports(directory, setup, run.report);
   std::fputs(profile_table(setup, run.report).c_str(), stdout);
   std::printf("reports %s, %s, %s\n", (directory / "report.json").c_str(), (directory / "frames.csv").c_str(),
               (directory / "report.html").c_str());
+  std::fflush(stdout);
+  options.view.hold_until_stopped(view.get(), stop);
   return exit_code(run, *source);
 }
 
@@ -76,6 +80,7 @@ Subcommand add_profile_command(CLI::App& cli) {
   command->add_option("-o,--output-dir", options->directory, "folder for the reports (created if missing)")
       ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "no progress line");
+  options->view.add_to(*command);
   return {command, [options](std::stop_token stop) { return run_profile(*options, stop); }};
 }
 

@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <mutex>
 
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
@@ -106,9 +108,41 @@ SourceLimits LimitOptions::limits() const {
   return limits;
 }
 
+void ViewOptions::add_to(CLI::App& command) {
+  command.add_option("--view", address,
+                     "show the run in a browser: serve the live view on [HOST:]PORT (HOST 127.0.0.1 unless given; "
+                     "PORT 0 picks a free one); the URL is printed");
+  command.add_flag("--view-hold", hold,
+                   "with --view: start when a page has opened the view, and keep serving it after the run until Ctrl-C");
+}
+
+std::unique_ptr<view::ViewServer> ViewOptions::start(std::stop_token stop) const {
+  if (address.empty()) {
+    if (hold) throw UsageError("--view-hold needs --view [HOST:]PORT");
+    return nullptr;
+  }
+  auto server = std::make_unique<view::ViewServer>(view::parse_view_address(address));
+  std::printf("view: %s\n", server->url().c_str());
+  std::fflush(stdout);
+  if (hold) {
+    spdlog::info("view: waiting for a page to open {}", server->url());
+    server->wait_for_viewer(stop);
+  }
+  return server;
+}
+
+void ViewOptions::hold_until_stopped(const view::ViewServer* server, std::stop_token stop) const {
+  if (server == nullptr || !hold || stop.stop_requested()) return;
+  spdlog::info("view: serving {} until Ctrl-C", server->url());
+  std::mutex mutex;
+  std::condition_variable_any stopped;
+  std::unique_lock lock(mutex);
+  stopped.wait(lock, stop, [] { return false; });
+}
+
 PipelineRun run_pipeline(FrameSource& source, const SceneSegmenter& segmenter, const PipelineRunOptions& options,
                          std::stop_token stop, const std::function<void(const FrameResult&)>& on_frame) {
-  const Pipeline pipeline(segmenter, PipelineConfig{options.frames_in_flight});
+  const Pipeline pipeline(segmenter, PipelineConfig{options.frames_in_flight, options.view});
   const Clock::time_point start = Clock::now();
   const CpuTimes cpu_start = process_cpu_times();
   PipelineRun run{RunReport(start), {}, false};
@@ -145,18 +179,22 @@ void StreamOptions::add_to(CLI::App& command) {
   add_inflight_option(command, frames_in_flight);
   limits.add_to(command);
   command.add_flag("-q,--quiet", quiet, "no progress line");
+  view.add_to(command);
 }
 
 int run_stream(FrameSource& source, const StreamOptions& options, const std::string& description,
                std::stop_token stop) {
   const SceneSegmenter segmenter(options.config.resolve());
   FrameWriter writer(options.outputs);
-  const PipelineRun run = run_pipeline(source, segmenter, {options.frames_in_flight, !options.quiet}, stop,
+  const auto view = options.view.start(stop);
+  const PipelineRun run = run_pipeline(source, segmenter, {options.frames_in_flight, !options.quiet, view.get()}, stop,
                                        [&](const FrameResult& result) { writer.write(result); });
   if (!options.outputs.directory.empty()) {
     run.report.write_json(std::filesystem::path(options.outputs.directory) / "summary.json", description);
   }
   std::printf("%s: %s\n", description.c_str(), run.report.summary_line().c_str());
+  std::fflush(stdout);
+  options.view.hold_until_stopped(view.get(), stop);
   return exit_code(run, source);
 }
 

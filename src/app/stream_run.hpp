@@ -9,6 +9,7 @@
 #include "frame_outputs.hpp"
 #include "lccp/capture/open_source.hpp"
 #include "lccp/frame_source.hpp"
+#include "lccp/view/view_server.hpp"
 #include "run_report.hpp"
 
 namespace lccp::app {
@@ -25,9 +26,23 @@ struct LimitOptions {
   SourceLimits limits() const;
 };
 
+// --view [HOST:]PORT and --view-hold: the run in a browser (lccp/view/view_server.hpp).
+struct ViewOptions {
+  std::string address;  // empty: no view
+  bool hold = false;
+
+  void add_to(CLI::App& command);
+  // The server, or none without --view. Prints its URL; with --view-hold,
+  // returns once a page has opened the stream (or a stop was requested).
+  std::unique_ptr<view::ViewServer> start(std::stop_token stop) const;
+  // With --view-hold, after the run's outputs: serves until a stop (Ctrl-C).
+  void hold_until_stopped(const view::ViewServer* server, std::stop_token stop) const;
+};
+
 struct PipelineRunOptions {
-  unsigned frames_in_flight = 2;  // K
-  bool progress = true;           // progress line on stderr, if it is a terminal
+  unsigned frames_in_flight = 2;       // K
+  bool progress = true;                // progress line on stderr, if it is a terminal
+  view::ViewServer* view = nullptr;    // watches the run (PipelineConfig::observer)
 };
 
 // How one pipeline run ended and what it measured.
@@ -56,6 +71,7 @@ struct StreamOptions {
   unsigned frames_in_flight = 2;
   LimitOptions limits;
   bool quiet = false;
+  ViewOptions view;
 
   void add_to(CLI::App& command);
 };

@@ -51,7 +51,7 @@ class BackgroundStream::HandOff {
 
 BackgroundStream::BackgroundStream(const SceneConfig& config, FrameSource& source, StreamConfig stream, Sink sink)
     : segmenter_(config),
-      pipeline_(segmenter_, PipelineConfig{stream.frames_in_flight}),
+      pipeline_(segmenter_, PipelineConfig{stream.frames_in_flight, stream.observer}),
       sink_(std::move(sink)),
       threads_(stream.threads > 0 ? stream.threads : tbb::task_arena::automatic),
       hand_off_(std::make_unique<HandOff>(std::max<std::size_t>(1, stream.hand_off_frames))),

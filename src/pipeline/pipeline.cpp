@@ -118,7 +118,7 @@ class OnExit {
 class Run {
  public:
   Run(const SceneSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
-      unsigned frames_in_flight, std::stop_token stop, LiveStats* live);
+      const PipelineConfig& config, std::stop_token stop, LiveStats* live);
   PipelineOutcome execute();
 
  private:
@@ -132,6 +132,7 @@ class Run {
   SegmentTracker tracker_;  // the ids stage's, in deliver_ only
   FrameSource& source_;
   const std::function<void(FrameResult&)>& sink_;
+  RunObserver* const observer_;  // sees each frame before the sink
   const DropPolicy policy_;
   std::stop_source halt_;  // no more frames: the caller's stop or a sink error
   detail::FrameAdmission admission_;
@@ -153,13 +154,14 @@ class Run {
 };
 
 Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::function<void(FrameResult&)>& sink,
-         unsigned frames_in_flight, std::stop_token stop, LiveStats* live)
+         const PipelineConfig& config, std::stop_token stop, LiveStats* live)
     : segmenter_(segmenter),
       tracker_(segmenter.new_tracker()),
       source_(source),
       sink_(sink),
+      observer_(config.observer),
       policy_(drop_policy_for(source)),
-      admission_(frames_in_flight,
+      admission_(config.frames_in_flight,
                  [this](Frame frame, std::uint64_t sequence) {
                    auto message = std::make_shared<FrameInFlight>();
                    message->sequence = sequence;
@@ -246,7 +248,10 @@ void Run::deliver(const Message& message) {
   const bool stage_failed = !result.error.empty();  // before the sink, which may move the result
   std::uint64_t PipelineStats::*count = &PipelineStats::frames_dropped;
   if (!sink_failed_) {
-    if (auto error = error_of([&] { sink_(result); })) {
+    if (auto error = error_of([&] {
+          if (observer_) observer_->publish(result, stats_.snapshot());
+          sink_(result);
+        })) {
       sink_failed_ = true;
       fail(std::move(*error));
       halt_.request_stop();  // no more frames: the sink cannot take them
@@ -293,8 +298,10 @@ Pipeline::Pipeline(const SceneSegmenter& segmenter, PipelineConfig config) : seg
 
 PipelineOutcome Pipeline::run(FrameSource& source, const std::function<void(FrameResult&)>& sink,
                               std::stop_token stop, LiveStats* live) const {
-  Run run(segmenter_, source, sink, config_.frames_in_flight, std::move(stop), live);
-  return run.execute();
+  Run run(segmenter_, source, sink, config_, std::move(stop), live);
+  PipelineOutcome outcome = run.execute();
+  if (config_.observer) config_.observer->finish(outcome.stats);
+  return outcome;
 }
 
 }  // namespace lccp

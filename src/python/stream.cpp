@@ -12,6 +12,7 @@
 #include "lccp/capture/open_source.hpp"
 #include "lccp/pipeline/background_stream.hpp"
 #include "lccp/pipeline/push_source.hpp"
+#include "lccp/view/view_server.hpp"
 
 namespace lccp::python {
 namespace {
@@ -48,19 +49,30 @@ PyFrame to_python(FrameResult&& result) {
 class Stream {
  public:
   Stream(std::unique_ptr<FrameSource> source, const SceneConfig& config, unsigned inflight,
-         std::optional<int> threads, std::optional<std::uint64_t> frames)
+         std::optional<int> threads, std::optional<std::uint64_t> frames, const std::optional<std::string>& view)
       : source_(std::move(source)),
-        stream_(config, *source_, StreamConfig{inflight, threads.value_or(0), 2}),
+        view_(start_view(view)),
+        stream_(config, *source_, StreamConfig{inflight, threads.value_or(0), 2, view_.get()}),
         frames_to_yield_(frames) {}
   ~Stream() { close(); }
 
   PyFrame next();
   void close();
+  std::optional<std::string> view_url() const { return view_ ? std::optional(view_->url()) : std::nullopt; }
 
  private:
   [[noreturn]] void finish();
 
+  // The live view on view = "[HOST:]PORT" (as lccp's --view); its URL printed.
+  static std::unique_ptr<view::ViewServer> start_view(const std::optional<std::string>& address) {
+    if (!address) return nullptr;
+    auto server = std::make_unique<view::ViewServer>(view::parse_view_address(*address));
+    py::print("view:", server->url());
+    return server;
+  }
+
   std::unique_ptr<FrameSource> source_;
+  std::unique_ptr<view::ViewServer> view_;  // watches stream_: outlives it
   BackgroundStream stream_;  // runs on *source_
   std::optional<std::uint64_t> frames_to_yield_;
   std::uint64_t frames_yielded_ = 0;
@@ -119,8 +131,8 @@ struct Live : Stream {
 class Push : public Stream {
  public:
   Push(std::unique_ptr<PushSource> source, PushSource& pushed, const SceneConfig& config, unsigned inflight,
-       std::optional<int> threads)
-      : Stream(std::move(source), config, inflight, threads, std::nullopt), pushed_(pushed) {}
+       std::optional<int> threads, const std::optional<std::string>& view)
+      : Stream(std::move(source), config, inflight, threads, std::nullopt, view), pushed_(pushed) {}
 
   std::uint64_t push(const CloudArrays& arrays, std::uint64_t timestamp_us) {
     Frame frame;
@@ -187,6 +199,7 @@ void bind_stream_methods(py::class_<Face>& face) {
   face.def("__iter__", [](py::object self) { return self; })
       .def("__next__", &Face::next, "The next Frame; StopIteration at the end of the stream.")
       .def("close", &Face::close, "Stops the run and waits for its thread (frames not taken are dropped).")
+      .def_property_readonly("view_url", &Face::view_url, "The live view's URL (view=...), else None.")
       .def("__enter__", [](py::object self) { return self; })
       .def("__exit__", [](Face& self, const py::args&) {
         self.close();
@@ -203,17 +216,18 @@ or .ply files or a folder of them.
 path: the recording (str or os.PathLike). config: as segment()'s.
 inflight: frames segmented at once. threads: None for every core, or a
 count. frames: yield this many frames, the first of the recording (None: all).
+view: "[HOST:]PORT" to watch the run in a browser, as lccp replay --view (None: no view).
 )doc") + kStreamMethodsDoc).c_str());
   replay.def(py::init([](PathArg path, ConfigArg config, unsigned inflight, std::optional<int> threads,
-                         std::optional<std::uint64_t> frames) {
+                         std::optional<std::uint64_t> frames, const std::optional<std::string>& view) {
                const SceneConfig scene_config = config_from(config);
                threads = thread_count(threads);
                // Lossless: the first `frames` of the source are the frames yielded.
                auto source = open(path_string(path), SourceLimits{frames, std::nullopt});
-               return std::make_unique<Replay>(std::move(source), scene_config, inflight, threads, frames);
+               return std::make_unique<Replay>(std::move(source), scene_config, inflight, threads, frames, view);
              }),
              py::arg("path"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
-             py::arg("frames") = py::none());
+             py::arg("frames") = py::none(), py::arg("view") = py::none());
   bind_stream_methods(replay);
 }
 
@@ -230,19 +244,20 @@ at once. threads: None for every core, or a count. frames: yield this many
 frames (dropped frames do not count: frames=10 yields 10 frames, whatever
 their indices; lccp live --frames counts frames taken from the sensor).
 seconds: stop this long after the first frame was asked for. None: until
-close() or Ctrl-C.
+close() or Ctrl-C. view: "[HOST:]PORT" to watch the run in a browser (None: no view).
 )doc") + kStreamMethodsDoc).c_str());
   live.def(py::init([](const std::string& uri, ConfigArg config, unsigned inflight, std::optional<int> threads,
-                       std::optional<std::uint64_t> frames, std::optional<double> seconds) {
+                       std::optional<std::uint64_t> frames, std::optional<double> seconds,
+                       const std::optional<std::string>& view) {
              const SceneConfig scene_config = config_from(config);
              threads = thread_count(threads);
              if (frames && *frames == 0) throw py::value_error("frames: expected None or a positive number, got 0");
              // The sensor runs on while frames are dropped: the stream counts what it yields.
              auto source = open(uri, SourceLimits{std::nullopt, seconds});
-             return std::make_unique<Live>(std::move(source), scene_config, inflight, threads, frames);
+             return std::make_unique<Live>(std::move(source), scene_config, inflight, threads, frames, view);
            }),
            py::arg("uri"), py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
-           py::arg("frames") = py::none(), py::arg("seconds") = py::none());
+           py::arg("frames") = py::none(), py::arg("seconds") = py::none(), py::arg("view") = py::none());
   bind_stream_methods(live);
 }
 
@@ -256,17 +271,19 @@ says no more frames come, and the iteration stops after the last one.
 
 config: as segment()'s. inflight: frames segmented at once. threads: None for
 every core, or a count. waiting: frames kept waiting for the pipeline (>= 1).
+view: "[HOST:]PORT" to watch the run in a browser (None: no view).
 )doc") + kStreamMethodsDoc).c_str());
-  push.def(py::init([](ConfigArg config, unsigned inflight, std::optional<int> threads, std::size_t waiting) {
+  push.def(py::init([](ConfigArg config, unsigned inflight, std::optional<int> threads, std::size_t waiting,
+                       const std::optional<std::string>& view) {
              const SceneConfig scene_config = config_from(config);
              threads = thread_count(threads);
              if (waiting == 0) throw py::value_error("waiting: expected a positive number, got 0");
              auto source = std::make_unique<PushSource>(waiting);
              PushSource& pushed = *source;
-             return std::make_unique<Push>(std::move(source), pushed, scene_config, inflight, threads);
+             return std::make_unique<Push>(std::move(source), pushed, scene_config, inflight, threads, view);
            }),
            py::arg("config") = "p1", py::arg("inflight") = 2, py::arg("threads") = py::none(),
-           py::arg("waiting") = 1);
+           py::arg("waiting") = 1, py::arg("view") = py::none());
   push.def(
       "push",
       [](Push& self, ArrayArg points, OptionalArrayArg colors, OptionalArrayArg normals, std::uint64_t timestamp_us) {

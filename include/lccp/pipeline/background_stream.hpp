@@ -33,6 +33,7 @@ struct StreamConfig {
   unsigned frames_in_flight = 2;    // K, as PipelineConfig
   int threads = 0;                  // threads of the stream's task arena; 0: every core
   std::size_t hand_off_frames = 2;  // results waiting for next(), at most (no sink)
+  RunObserver* observer = nullptr;  // as PipelineConfig (the live view); outlives the stream
 };
 
 class BackgroundStream {

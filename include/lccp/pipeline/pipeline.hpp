@@ -57,8 +57,24 @@ inline DropPolicy drop_policy_for(const FrameSource& source) {
   return source.is_live() ? DropPolicy::drop_oldest : DropPolicy::block;
 }
 
+struct FrameResult;
+struct PipelineStats;
+
+// Watches a run (the live view, lccp/view/view_server.hpp): sees every frame
+// handed over, just before the sink does (in frame order, one call at a time,
+// on the sink's thread), with the counts as they stand; then the run's final
+// counts. It must return quickly: the run waits for it. An exception from
+// publish() counts as the sink's.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  virtual void publish(const FrameResult& result, const PipelineStats& stats) = 0;
+  virtual void finish(const PipelineStats& stats) = 0;
+};
+
 struct PipelineConfig {
-  unsigned frames_in_flight = 2;  // K >= 1: frames in the graph at once
+  unsigned frames_in_flight = 2;     // K >= 1: frames in the graph at once
+  RunObserver* observer = nullptr;   // outlives the runs; none: nothing is watched
 };
 
 struct FrameResult {

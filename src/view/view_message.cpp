@@ -1,0 +1,246 @@
+// The view's messages: a frame sampled on the sink thread, encoded on the
+// server's thread (format: view_message.hpp).
+#include "view_message.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <Eigen/Geometry>  // cross
+#include <nlohmann/json.hpp>
+
+#include "lccp/io/cloud_io.hpp"  // label_color, part_color: the colours of the label images
+#include "lccp/metrics/statistics.hpp"
+
+namespace lccp::view {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr double kWindowSeconds = 60;  // the latency chart's span
+constexpr double kRateSeconds = 2;     // frames per second over the last two seconds
+
+void sample_image(const PointCloud& cloud, const Labels& labels, FrameSample& sample) {
+  const std::uint32_t step =
+      std::max({1u, (cloud.width + kImageWidth - 1) / kImageWidth, (cloud.height + kImageHeight - 1) / kImageHeight});
+  sample.width = (cloud.width + step - 1) / step;
+  sample.height = (cloud.height + step - 1) / step;
+  sample.points.reserve(std::size_t{sample.width} * sample.height);
+  sample.labels.reserve(sample.points.capacity());
+  for (std::uint32_t y = 0; y < cloud.height; y += step) {
+    for (std::uint32_t x = 0; x < cloud.width; x += step) {
+      const std::size_t i = std::size_t{y} * cloud.width + x;
+      sample.points.push_back(cloud.points[i]);
+      sample.labels.push_back(labels[i]);
+    }
+  }
+}
+
+void sample_points(const PointCloud& cloud, const Labels& labels, FrameSample& sample) {
+  const std::size_t step = std::max<std::size_t>(1, (cloud.size() + kMaxPoints3d - 1) / kMaxPoints3d);
+  for (std::size_t i = 0; i < cloud.size(); i += step) {
+    sample.points.push_back(cloud.points[i]);
+    sample.labels.push_back(labels[i]);
+  }
+}
+
+SegmentSample segment_sample(const SegmentGeometry& geometry, std::uint32_t object, bool part) {
+  return {geometry.id, object, geometry.points, geometry.obb.extents, geometry.centroid, geometry.grasp == Grasp::top,
+          part};
+}
+
+std::vector<SegmentSample> segment_samples(const SceneSegmentation& scene) {
+  std::vector<SegmentSample> segments;
+  for (const ObjectSegments& object : scene.segments) {
+    if (object.parts.empty()) segments.push_back(segment_sample(object.object, object.object.id, false));
+    for (const SegmentGeometry& part : object.parts) segments.push_back(segment_sample(part, object.object.id, true));
+  }
+  return segments;
+}
+
+// Segment index + 1 per label id (0 for none), through a sorted table.
+class SegmentIndex {
+ public:
+  SegmentIndex(const std::vector<SegmentSample>& segments, std::uint32_t support_id) {
+    for (std::size_t i = 0; i < segments.size(); ++i) table_.emplace_back(segments[i].id, i + 1);
+    if (support_id != 0) table_.emplace_back(support_id, segments.size() + 1);
+    std::sort(table_.begin(), table_.end());
+  }
+  std::uint16_t operator()(std::uint32_t id) const {
+    const auto found = std::lower_bound(table_.begin(), table_.end(), std::pair<std::uint32_t, std::size_t>{id, 0});
+    const bool known = id != 0 && found != table_.end() && found->first == id && found->second <= 0xFFFF;
+    return known ? static_cast<std::uint16_t>(found->second) : 0;
+  }
+
+ private:
+  std::vector<std::pair<std::uint32_t, std::size_t>> table_;
+};
+
+// Lambert shading, light at the camera, the normal from the neighbouring
+// pixels' points (as the overlay PNGs: src/io/label_image.cpp).
+std::uint8_t shade(const FrameSample& frame, std::uint32_t x, std::uint32_t y) {
+  const auto at = [&](std::int64_t u, std::int64_t v) -> const Eigen::Vector3f* {
+    if (u < 0 || v < 0 || u >= frame.width || v >= frame.height) return nullptr;
+    const Eigen::Vector3f& p = frame.points[static_cast<std::size_t>(v) * frame.width + static_cast<std::size_t>(u)];
+    return p.allFinite() ? &p : nullptr;
+  };
+  const Eigen::Vector3f* centre = at(x, y);
+  if (centre == nullptr) return 0;
+  const auto or_centre = [&](const Eigen::Vector3f* p) { return p ? *p : *centre; };
+  const Eigen::Vector3f dx = or_centre(at(x + 1, y)) - or_centre(at(std::int64_t{x} - 1, y));
+  const Eigen::Vector3f dy = or_centre(at(x, y + 1)) - or_centre(at(x, std::int64_t{y} - 1));
+  const Eigen::Vector3f normal = dx.cross(dy);
+  const float norm = normal.norm() * centre->norm();
+  const float lambert = norm > 0 ? std::abs(normal.dot(*centre)) / norm : 0.6f;
+  return static_cast<std::uint8_t>(50 + 200 * std::clamp(lambert, 0.0f, 1.0f));
+}
+
+template <typename T>
+void append(std::string& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));  // little-endian hosts (x86-64, arm64)
+  out.append(bytes, sizeof(T));
+}
+
+void pad_to_4(std::string& out) { out.append((4 - out.size() % 4) % 4, '\0'); }
+
+std::int16_t millimetres(float metres) {
+  return static_cast<std::int16_t>(std::clamp(std::lround(metres * 1000.0f), -32767L, 32767L));
+}
+
+// Every finite sample point, thinned to kMaxPoints3d.
+std::vector<std::size_t> points_3d(const FrameSample& frame) {
+  std::vector<std::size_t> finite;
+  for (std::size_t i = 0; i < frame.points.size(); ++i) {
+    if (frame.points[i].allFinite()) finite.push_back(i);
+  }
+  const std::size_t step = std::max<std::size_t>(1, (finite.size() + kMaxPoints3d - 1) / kMaxPoints3d);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < finite.size(); i += step) kept.push_back(finite[i]);
+  return kept;
+}
+
+Json segment_json(const SegmentSample& segment) {
+  const auto rgb = segment.part ? part_color(segment.object, segment.id) : label_color(segment.id);
+  return {{"id", segment.id},
+          {"object", segment.object},
+          {"points", segment.points},
+          {"size", {segment.size.x(), segment.size.y(), segment.size.z()}},
+          {"centroid", {segment.centroid.x(), segment.centroid.y(), segment.centroid.z()}},
+          {"grasp", segment.top_grasp ? "top" : "side"},
+          {"part", segment.part},
+          {"color", {rgb[0], rgb[1], rgb[2]}}};
+}
+
+// As summary.json names them (src/app/run_report.cpp).
+Json counts_json(const PipelineStats& stats) {
+  return {{"frames_received", stats.frames_received}, {"sensor_gaps", stats.sensor_gaps},
+          {"frames_completed", stats.frames_completed}, {"frames_failed", stats.frames_failed},
+          {"frames_dropped", stats.frames_dropped}};
+}
+
+Json p50_p99(std::vector<double> values) {
+  const Percentiles p = percentiles(std::move(values));
+  return {{"p50", p.p50}, {"p99", p.p99}};
+}
+
+// The window's end-to-end and per-stage p50 and p99 (lccp::percentiles, as the profile report).
+Json latency_json(const std::deque<FrameTimes>& window) {
+  std::vector<double> end_to_end;
+  for (const FrameTimes& times : window) end_to_end.push_back(times.end_to_end_ms);
+  Json stages = Json::array();
+  for (const StageInfo& info : kStages) {
+    std::vector<double> ms;
+    for (const FrameTimes& times : window) ms.push_back(times.stages[info.stage]);
+    Json stage = p50_p99(std::move(ms));
+    stage["name"] = info.name;
+    stages.push_back(std::move(stage));
+  }
+  return {{"end_to_end", p50_p99(std::move(end_to_end))}, {"stages", std::move(stages)}, {"frames", window.size()}};
+}
+
+double frames_per_second(const std::deque<FrameTimes>& window) {
+  if (window.size() < 2) return 0;
+  const double last = window.back().at_s;
+  auto first = window.end() - 1;
+  while (first != window.begin() && last - (first - 1)->at_s <= kRateSeconds) --first;
+  const double span = last - first->at_s;
+  return span > 0 ? static_cast<double>(window.end() - 1 - first) / span : 0;
+}
+
+Json header_json(const FrameSample* frame, const RunFigures& figures, std::size_t points) {
+  Json header = {{"type", frame ? "frame" : "end"},
+                 {"ended", figures.ended},
+                 {"counts", counts_json(figures.stats)},
+                 {"fps", frames_per_second(figures.window)},
+                 {"latency", latency_json(figures.window)}};
+  if (frame == nullptr) return header;
+  Json segments = Json::array();
+  for (const SegmentSample& segment : frame->segments) segments.push_back(segment_json(segment));
+  header.update({{"index", frame->index},     {"width", frame->width},       {"height", frame->height},
+                 {"points", points},          {"segments", std::move(segments)},
+                 {"support", frame->support_id ? frame->segments.size() + 1 : 0}, {"support_id", frame->support_id},
+                 {"error", frame->error}});
+  return header;
+}
+
+void append_image(std::string& out, const FrameSample& frame, const SegmentIndex& index) {
+  const std::size_t pixels = std::size_t{frame.width} * frame.height;
+  for (std::size_t i = 0; i < pixels; ++i) append<std::uint16_t>(out, index(frame.labels[i]));
+  for (std::uint32_t y = 0; y < frame.height; ++y) {
+    for (std::uint32_t x = 0; x < frame.width; ++x) out.push_back(static_cast<char>(shade(frame, x, y)));
+  }
+  pad_to_4(out);
+}
+
+}  // namespace
+
+FrameSample sample_frame(const FrameResult& result) {
+  const PointCloud& cloud = result.frame.cloud;
+  const Labels& labels = result.segmentation.labels;
+  FrameSample sample;
+  sample.index = result.frame.index;
+  sample.error = result.error;
+  if (labels.size() == cloud.size()) {
+    if (cloud.organized()) {
+      sample_image(cloud, labels, sample);
+    } else {
+      sample_points(cloud, labels, sample);
+    }
+  }
+  sample.segments = segment_samples(result.segmentation);
+  sample.support_id = result.segmentation.support_id;
+  return sample;
+}
+
+FrameTimes frame_times(const FrameResult& result, double at_s) {
+  return {at_s, result.end_to_end_ms(), result.segmentation.times};
+}
+
+void trim_window(std::deque<FrameTimes>& window, double now_s) {
+  while (!window.empty() && now_s - window.front().at_s > kWindowSeconds) window.pop_front();
+}
+
+std::string encode_frame(const FrameSample* frame, const RunFigures& figures) {
+  const std::vector<std::size_t> kept = frame ? points_3d(*frame) : std::vector<std::size_t>{};
+  const std::string header = header_json(frame, figures, kept.size()).dump(-1, ' ', false, Json::error_handler_t::replace);
+  std::string out;
+  append<std::uint32_t>(out, static_cast<std::uint32_t>(header.size()));
+  out += header;
+  pad_to_4(out);
+  if (frame == nullptr) return out;
+  const SegmentIndex index(frame->segments, frame->support_id);
+  append_image(out, *frame, index);
+  out.reserve(out.size() + kept.size() * 8);
+  for (const std::size_t i : kept) {
+    const Eigen::Vector3f& p = frame->points[i];
+    append(out, millimetres(p.x()));
+    append(out, millimetres(p.y()));
+    append(out, millimetres(p.z()));
+    append<std::uint16_t>(out, index(frame->labels[i]));
+  }
+  return out;
+}
+
+}  // namespace lccp::view
