@@ -64,7 +64,8 @@ def profile(lccp, recording, threads, view):
             if line.startswith("reports "):
                 break
         report = json.load(open(os.path.join(out, "report.json")))
-        process.send_signal(signal.SIGINT)  # --view-hold serves until Ctrl-C
+        if view:
+            process.send_signal(signal.SIGINT)  # --view-hold serves until Ctrl-C
         process.wait(timeout=600)
         for sock in sockets:
             sock.close()

@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "lccp/io/cloud_io.hpp"  // label_color, part_color: the colours of the label images
-#include "lccp/metrics/statistics.hpp"
 
 namespace lccp::view {
 namespace {
@@ -78,22 +77,31 @@ class SegmentIndex {
 };
 
 // Lambert shading, light at the camera, the normal from the neighbouring
-// pixels' points (as the overlay PNGs: src/io/label_image.cpp).
-std::uint8_t shade(const FrameSample& frame, std::uint32_t x, std::uint32_t y) {
-  const auto at = [&](std::int64_t u, std::int64_t v) -> const Eigen::Vector3f* {
-    if (u < 0 || v < 0 || u >= frame.width || v >= frame.height) return nullptr;
-    const Eigen::Vector3f& p = frame.points[static_cast<std::size_t>(v) * frame.width + static_cast<std::size_t>(u)];
-    return p.allFinite() ? &p : nullptr;
-  };
-  const Eigen::Vector3f* centre = at(x, y);
-  if (centre == nullptr) return 0;
-  const auto or_centre = [&](const Eigen::Vector3f* p) { return p ? *p : *centre; };
-  const Eigen::Vector3f dx = or_centre(at(x + 1, y)) - or_centre(at(std::int64_t{x} - 1, y));
-  const Eigen::Vector3f dy = or_centre(at(x, y + 1)) - or_centre(at(x, std::int64_t{y} - 1));
-  const Eigen::Vector3f normal = dx.cross(dy);
-  const float norm = normal.norm() * centre->norm();
-  const float lambert = norm > 0 ? std::abs(normal.dot(*centre)) / norm : 0.6f;
-  return static_cast<std::uint8_t>(50 + 200 * std::clamp(lambert, 0.0f, 1.0f));
+// pixels' points (as the overlay PNGs: src/io/label_image.cpp); black where
+// the sensor saw nothing.
+void append_shade(std::string& out, const FrameSample& frame) {
+  const std::size_t width = frame.width, height = frame.height;
+  const auto& points = frame.points;
+  const auto seen = [&](std::size_t i) { return std::isfinite(points[i].z()); };
+  for (std::size_t y = 0; y < height; ++y) {
+    for (std::size_t x = 0; x < width; ++x) {
+      const std::size_t i = y * width + x;
+      if (!seen(i)) {
+        out.push_back(0);
+        continue;
+      }
+      const Eigen::Vector3f& centre = points[i];
+      const auto at = [&](bool inside, std::size_t j) -> const Eigen::Vector3f& {
+        return inside && seen(j) ? points[j] : centre;
+      };
+      const Eigen::Vector3f dx = at(x + 1 < width, i + 1) - at(x > 0, i - 1);
+      const Eigen::Vector3f dy = at(y + 1 < height, i + width) - at(y > 0, i - width);
+      const Eigen::Vector3f normal = dx.cross(dy);
+      const float norms = normal.squaredNorm() * centre.squaredNorm();
+      const float lambert = norms > 0 ? std::abs(normal.dot(centre)) / std::sqrt(norms) : 0.6f;
+      out.push_back(static_cast<char>(50 + 200 * std::min(lambert, 1.0f)));
+    }
+  }
 }
 
 template <typename T>
@@ -140,24 +148,16 @@ Json counts_json(const PipelineStats& stats) {
           {"frames_dropped", stats.frames_dropped}};
 }
 
-Json p50_p99(std::vector<double> values) {
-  const Percentiles p = percentiles(std::move(values));
-  return {{"p50", p.p50}, {"p99", p.p99}};
-}
+Json p50_p99(const Percentiles& p) { return {{"p50", p.p50}, {"p99", p.p99}}; }
 
-// The window's end-to-end and per-stage p50 and p99 (lccp::percentiles, as the profile report).
-Json latency_json(const std::deque<FrameTimes>& window) {
-  std::vector<double> end_to_end;
-  for (const FrameTimes& times : window) end_to_end.push_back(times.end_to_end_ms);
+Json latency_json(const WindowFigures& figures) {
   Json stages = Json::array();
   for (const StageInfo& info : kStages) {
-    std::vector<double> ms;
-    for (const FrameTimes& times : window) ms.push_back(times.stages[info.stage]);
-    Json stage = p50_p99(std::move(ms));
+    Json stage = p50_p99(figures.stages[static_cast<std::size_t>(info.stage)]);
     stage["name"] = info.name;
     stages.push_back(std::move(stage));
   }
-  return {{"end_to_end", p50_p99(std::move(end_to_end))}, {"stages", std::move(stages)}, {"frames", window.size()}};
+  return {{"end_to_end", p50_p99(figures.end_to_end)}, {"stages", std::move(stages)}, {"frames", figures.frames}};
 }
 
 double frames_per_second(const std::deque<FrameTimes>& window) {
@@ -169,12 +169,27 @@ double frames_per_second(const std::deque<FrameTimes>& window) {
   return span > 0 ? static_cast<double>(window.end() - 1 - first) / span : 0;
 }
 
+WindowFigures window_figures(const std::deque<FrameTimes>& window) {
+  WindowFigures figures;
+  std::vector<double> ms;
+  for (const FrameTimes& times : window) ms.push_back(times.end_to_end_ms);
+  figures.end_to_end = percentiles(ms);
+  for (std::size_t stage = 0; stage < kStageCount; ++stage) {
+    for (std::size_t i = 0; i < window.size(); ++i) ms[i] = window[i].stages.ms[stage];
+    figures.stages[stage] = percentiles(ms);
+  }
+  figures.frames = window.size();
+  figures.frames_per_second = frames_per_second(window);
+  figures.at_s = window.empty() ? 0 : window.back().at_s;
+  return figures;
+}
+
 Json header_json(const FrameSample* frame, const RunFigures& figures, std::size_t points) {
   Json header = {{"type", frame ? "frame" : "end"},
                  {"ended", figures.ended},
                  {"counts", counts_json(figures.stats)},
-                 {"fps", frames_per_second(figures.window)},
-                 {"latency", latency_json(figures.window)}};
+                 {"fps", figures.figures.frames_per_second},
+                 {"latency", latency_json(figures.figures)}};
   if (frame == nullptr) return header;
   Json segments = Json::array();
   for (const SegmentSample& segment : frame->segments) segments.push_back(segment_json(segment));
@@ -185,12 +200,28 @@ Json header_json(const FrameSample* frame, const RunFigures& figures, std::size_
   return header;
 }
 
-void append_image(std::string& out, const FrameSample& frame, const SegmentIndex& index) {
+// The pixels' segment indices as runs: a segment covers whole stretches of a
+// row, so a frame takes a few thousand runs instead of one value per pixel.
+void append_label_runs(std::string& out, const FrameSample& frame, const SegmentIndex& index) {
+  const std::size_t count_at = out.size();
+  append<std::uint32_t>(out, 0);
+  std::uint32_t runs = 0;
   const std::size_t pixels = std::size_t{frame.width} * frame.height;
-  for (std::size_t i = 0; i < pixels; ++i) append<std::uint16_t>(out, index(frame.labels[i]));
-  for (std::uint32_t y = 0; y < frame.height; ++y) {
-    for (std::uint32_t x = 0; x < frame.width; ++x) out.push_back(static_cast<char>(shade(frame, x, y)));
+  for (std::size_t i = 0; i < pixels;) {
+    const std::uint32_t label = frame.labels[i];
+    std::size_t length = 1;
+    while (i + length < pixels && length < 0xFFFF && frame.labels[i + length] == label) ++length;
+    append(out, index(label));
+    append(out, static_cast<std::uint16_t>(length));
+    ++runs;
+    i += length;
   }
+  std::memcpy(out.data() + count_at, &runs, sizeof runs);
+}
+
+void append_image(std::string& out, const FrameSample& frame, const SegmentIndex& index) {
+  append_label_runs(out, frame, index);
+  append_shade(out, frame);
   pad_to_4(out);
 }
 
@@ -218,28 +249,34 @@ FrameTimes frame_times(const FrameResult& result, double at_s) {
   return {at_s, result.end_to_end_ms(), result.segmentation.times};
 }
 
-void trim_window(std::deque<FrameTimes>& window, double now_s) {
-  while (!window.empty() && now_s - window.front().at_s > kWindowSeconds) window.pop_front();
+void add_frame_times(RunFigures& run, const std::vector<FrameTimes>& times) {
+  std::deque<FrameTimes>& window = run.window;
+  window.insert(window.end(), times.begin(), times.end());
+  if (window.empty()) return;
+  const double now_s = window.back().at_s;
+  while (now_s - window.front().at_s > kWindowSeconds) window.pop_front();
+  if (run.ended || now_s - run.figures.at_s >= 1.0) run.figures = window_figures(window);
 }
 
 std::string encode_frame(const FrameSample* frame, const RunFigures& figures) {
   const std::vector<std::size_t> kept = frame ? points_3d(*frame) : std::vector<std::size_t>{};
   const std::string header = header_json(frame, figures, kept.size()).dump(-1, ' ', false, Json::error_handler_t::replace);
   std::string out;
+  out.reserve(header.size() + 8 + (frame ? 3 * frame->points.size() + 8 * kept.size() : 0));
   append<std::uint32_t>(out, static_cast<std::uint32_t>(header.size()));
   out += header;
   pad_to_4(out);
   if (frame == nullptr) return out;
   const SegmentIndex index(frame->segments, frame->support_id);
   append_image(out, *frame, index);
-  out.reserve(out.size() + kept.size() * 8);
+  std::vector<std::uint16_t> points;  // x, y, z (as i16), segment, per point
+  points.reserve(4 * kept.size());
   for (const std::size_t i : kept) {
     const Eigen::Vector3f& p = frame->points[i];
-    append(out, millimetres(p.x()));
-    append(out, millimetres(p.y()));
-    append(out, millimetres(p.z()));
-    append<std::uint16_t>(out, index(frame->labels[i]));
+    for (const float metres : {p.x(), p.y(), p.z()}) points.push_back(static_cast<std::uint16_t>(millimetres(metres)));
+    points.push_back(index(frame->labels[i]));
   }
+  out.append(reinterpret_cast<const char*>(points.data()), points.size() * sizeof(std::uint16_t));  // little-endian
   return out;
 }
 

@@ -5,7 +5,8 @@
 // One binary WebSocket message per frame, little-endian:
 //   u32 n, then n bytes of JSON (the header: frame, segments, counts, latency),
 //   zero padding to a multiple of 4,
-//   u16 label[width * height]   segment index + 1 per pixel of the sampled image (0: none)
+//   u32 r, {u16 label, u16 length}[r]   the sampled image's pixels, row after row, as runs
+//                               of one label: segment index + 1 (0: none)
 //   u8  shade[width * height]   grey Lambert shading of the surface, light at the camera
 //   zero padding to a multiple of 4,
 //   {i16 x, y, z (mm); u16 segment index + 1}[points]   the 3D view's points
@@ -18,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "lccp/metrics/statistics.hpp"
 #include "lccp/pipeline/pipeline.hpp"
 
 namespace lccp::view {
@@ -54,10 +56,22 @@ struct FrameTimes {
   StageTimes stages;
 };
 
+// The window's figures (lccp::percentiles, as the profile report), recomputed
+// at most once a second: sorting a minute of frames for every message would
+// cost more than the rest of it.
+struct WindowFigures {
+  Percentiles end_to_end;
+  std::array<Percentiles, kStageCount> stages{};
+  std::size_t frames = 0;
+  double frames_per_second = 0;  // over the last two seconds
+  double at_s = -1;              // the newest frame's time when computed
+};
+
 // The chart's window (the last minute) and the counts, as the header reports them.
 struct RunFigures {
   PipelineStats stats;
   std::deque<FrameTimes> window;
+  WindowFigures figures;
   bool ended = false;
 };
 
@@ -67,8 +81,9 @@ FrameSample sample_frame(const FrameResult& result);
 // The frame's times, for the window.
 FrameTimes frame_times(const FrameResult& result, double at_s);
 
-// Drops the window's frames older than 60 s before `now_s`.
-void trim_window(std::deque<FrameTimes>& window, double now_s);
+// Adds frames' times to the window, drops those older than 60 s, and
+// recomputes the window's figures if a second has passed or the run ended.
+void add_frame_times(RunFigures& run, const std::vector<FrameTimes>& times);
 
 // The message for one frame (format above); without a frame (the run's end),
 // the JSON header alone.

@@ -76,6 +76,8 @@ class ViewServer::Impl {
   void accept();
   void open_stream(beast::tcp_stream stream, http::request<http::empty_body> request);
   void stream_opened(const std::shared_ptr<StreamSession>& session);
+  template <typename Change>
+  void hand_over(Change&& change);  // a change to the published state, then a take_published on the server's thread
   void take_published();
   void send_newest();
   void close_when_sent(Clock::time_point deadline);
@@ -94,7 +96,7 @@ class ViewServer::Impl {
   std::uint64_t viewers_ = 0;  // streams opened; under mutex_
 
   // The server's thread only.
-  std::optional<FrameSample> frame_;  // the newest, not yet encoded if dirty_
+  std::optional<FrameSample> frame_;  // the newest sample, not yet encoded if dirty_
   RunFigures figures_;
   bool dirty_ = false;
   Clock::time_point last_encoded_{};
@@ -289,21 +291,29 @@ void ViewServer::Impl::stream_opened(const std::shared_ptr<StreamSession>& sessi
   send_newest();
 }
 
+// The sink's thread: a sample of the frame (taken outside the lock: the
+// server's thread never waits for it), its times and the counts.
 void ViewServer::Impl::publish(const FrameResult& result, const PipelineStats& stats) {
   FrameSample sample = sample_frame(result);
   const FrameTimes times = frame_times(result, std::chrono::duration<double>(Clock::now() - start_).count());
-  const std::lock_guard lock(mutex_);
-  published_ = std::move(sample);
-  published_times_.push_back(times);
-  published_stats_ = stats;
-  if (std::exchange(take_posted_, true)) return;
-  asio::post(io_, [this] { take_published(); });
+  hand_over([&] {
+    published_ = std::move(sample);
+    published_times_.push_back(times);
+    published_stats_ = stats;
+  });
 }
 
 void ViewServer::Impl::finish(const PipelineStats& stats) {
+  hand_over([&] {
+    published_stats_ = stats;
+    ended_ = true;
+  });
+}
+
+template <typename Change>
+void ViewServer::Impl::hand_over(Change&& change) {
   const std::lock_guard lock(mutex_);
-  published_stats_ = stats;
-  ended_ = true;
+  change();
   if (std::exchange(take_posted_, true)) return;
   asio::post(io_, [this] { take_published(); });
 }
@@ -318,14 +328,13 @@ void ViewServer::Impl::take_published() {
     figures_.ended = ended_;
     take_posted_ = false;
   }
-  figures_.window.insert(figures_.window.end(), times.begin(), times.end());
-  if (!figures_.window.empty()) trim_window(figures_.window, figures_.window.back().at_s);
+  add_frame_times(figures_, times);
   dirty_ = true;
   send_newest();
 }
 
-// Encodes the newest frame with the counts (at most 30 times a second, and
-// only for someone) and offers it to every stream; the run's end at once.
+// Encodes the newest frame with the figures (at most 30 times a second; the
+// run's end at once) and offers it to every stream.
 void ViewServer::Impl::send_newest() {
   std::erase_if(streams_, [](const std::weak_ptr<StreamSession>& stream) { return stream.expired(); });
   if (!dirty_ || streams_.empty()) return;
@@ -351,7 +360,7 @@ void ViewServer::Impl::close_when_sent(Clock::time_point deadline) {
     const auto session = stream.lock();
     return !session || session->idle();
   });
-  if ((!sent || (dirty_ && !streams_.empty())) && Clock::now() < deadline) {
+  if (!sent && Clock::now() < deadline) {
     close_timer_.expires_after(std::chrono::milliseconds(20));
     close_timer_.async_wait([this, deadline](beast::error_code) { close_when_sent(deadline); });
     return;

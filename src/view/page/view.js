@@ -23,8 +23,16 @@ function parse(buffer) {
   if (header.index === undefined) return { header };
   let offset = align4(4 + headerBytes);
   const pixels = header.width * header.height;
-  const labels = new Uint16Array(buffer, offset, pixels);
-  offset += 2 * pixels;
+  const runs = new DataView(buffer, offset);
+  const labels = new Uint16Array(pixels);
+  let pixel = 0;
+  for (let r = 0; r < runs.getUint32(0, true); ++r) {
+    const value = runs.getUint16(4 + 4 * r, true);
+    const length = runs.getUint16(6 + 4 * r, true);
+    labels.fill(value, pixel, pixel + length);
+    pixel += length;
+  }
+  offset += 4 + 4 * runs.getUint32(0, true);
   const shade = new Uint8Array(buffer, offset, pixels);
   offset = align4(offset + pixels);
   const points = new DataView(buffer, offset, 8 * header.points);
