@@ -5,6 +5,7 @@ import io
 import json
 import os
 import signal
+import socket
 import subprocess
 import time
 
@@ -13,6 +14,7 @@ from PIL import Image
 from selenium import webdriver
 from selenium.webdriver.chrome.options import Options
 from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
 
 import lccp_stream
 
@@ -70,12 +72,40 @@ def label_colour_share(png, colours):
     return found / len(pixels)
 
 
+def request(port, data):
+    """Sends raw bytes; the answer's status (0 if the server closed without one)."""
+    with socket.create_connection(("127.0.0.1", port), timeout=WAIT_S) as sock:
+        sock.sendall(data)
+        answer = b""
+        while chunk := sock.recv(65536):
+            answer += chunk
+    return int(answer.split(b" ")[1]) if answer.startswith(b"HTTP/1.1 ") else 0
+
+
+def bad_requests(port):
+    """What a hostile network sends: each gets its answer and one log line."""
+    assert request(port, b"GET /nope HTTP/1.1\r\nHost: x\r\n\r\n") == 404
+    assert request(port, b"GET /../../etc/passwd HTTP/1.1\r\nHost: x\r\n\r\n") == 404
+    assert request(port, b"GET /%2e%2e/etc/passwd HTTP/1.1\r\nHost: x\r\n\r\n") == 404
+    assert request(port, b"GET / HTTP/1.1\r\nX: " + b"a" * 20000 + b"\r\n\r\n") == 431
+    for _ in range(200):  # connect and vanish
+        socket.create_connection(("127.0.0.1", port), timeout=WAIT_S).close()
+    with socket.create_connection(("127.0.0.1", port), timeout=WAIT_S) as sock:  # garbage on the WebSocket
+        sock.sendall(b"GET /stream HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                     b"Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n")
+        assert b" 101 " in sock.recv(4096)
+        sock.sendall(bytes(range(256)) * 4)
+        while sock.recv(65536):  # until the server closes it
+            pass
+
+
 def test_the_page_shows_a_replay_and_its_final_counts(browser, lccp_binary, recording, tmp_path, source_dir):
     out = tmp_path / "out"
     process = subprocess.Popen([lccp_binary, "replay", str(recording), "--view", "127.0.0.1:0", "--view-hold",
                                 "-o", str(out), "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         url = read_url(process)
+        bad_requests(int(url.rsplit(":", 1)[1].strip("/")))
         browser.get(url)  # the run starts once the page has opened the stream (--view-hold)
         state = wait_for(lambda: (lambda s: s if s["ended"] else None)(page_state(browser)), "the run's end")
         summary = json.loads(wait_for(lambda: (out / "summary.json").exists() and (out / "summary.json").read_text(),
@@ -84,7 +114,11 @@ def test_the_page_shows_a_replay_and_its_final_counts(browser, lccp_binary, reco
         assert {key: state["counts"][key] for key in COUNT_KEYS} == {key: summary[key] for key in COUNT_KEYS}
         assert summary["frames_completed"] == 62 and summary["frames_dropped"] == 0
         assert browser.find_element("id", "completed").text == "62"
-        canvas = browser.find_element("id", "labels").screenshot_as_png
+        labels = browser.find_element("id", "labels")
+        ActionChains(browser).move_to_element(labels).perform()  # the middle of the frame: the objects on the table
+        tooltip = browser.find_element("id", "tooltip")
+        assert tooltip.is_displayed() and ("points" in tooltip.text or "support" in tooltip.text), tooltip.text
+        canvas = labels.screenshot_as_png
         assert label_colour_share(canvas, state["colours"]) > 0.2, "few label colours in the 2D view"
         points = browser.find_element("id", "points").screenshot_as_png
         assert label_colour_share(points, state["colours"]) > 0.01, "no label colours in the 3D view"
@@ -95,6 +129,10 @@ def test_the_page_shows_a_replay_and_its_final_counts(browser, lccp_binary, reco
         process.send_signal(signal.SIGINT)
         _, errors = process.communicate(timeout=WAIT_S)
     assert process.returncode == 0, errors
+    assert len(list(out.glob("frame_*.png"))) == 62  # the run's outputs are complete
+    for line in ["404 (GET /nope)", "404 (GET /../../etc/passwd)", "431 (header too large)",
+                 "; stream closed"]:
+        assert sum(line in error for error in errors.splitlines()) == 1, (line, errors[-2000:])
 
 
 def test_python_streams_take_a_view(browser, recording):
