@@ -99,7 +99,7 @@ void append_shade(std::string& out, const FrameSample& frame) {
       const Eigen::Vector3f normal = dx.cross(dy);
       const float norms = normal.squaredNorm() * centre.squaredNorm();
       const float lambert = norms > 0 ? std::abs(normal.dot(centre)) / std::sqrt(norms) : 0.6f;
-      out.push_back(static_cast<char>(50 + 200 * std::min(lambert, 1.0f)));
+      out.push_back(static_cast<char>(static_cast<std::uint8_t>(50 + 200 * std::min(lambert, 1.0f))));
     }
   }
 }
