@@ -58,7 +58,8 @@ std::vector<SegmentSample> segment_samples(const SceneSegmentation& scene) {
   return segments;
 }
 
-// Segment index + 1 per label id (0 for none), through a sorted table.
+// Segment index + 1 per label id (0 for none), through a sorted table; the
+// last answer is kept, as neighbouring points mostly share their label.
 class SegmentIndex {
  public:
   SegmentIndex(const std::vector<SegmentSample>& segments, std::uint32_t support_id) {
@@ -66,14 +67,19 @@ class SegmentIndex {
     if (support_id != 0) table_.emplace_back(support_id, segments.size() + 1);
     std::sort(table_.begin(), table_.end());
   }
-  std::uint16_t operator()(std::uint32_t id) const {
+  std::uint16_t operator()(std::uint32_t id) {
+    if (id == last_id_) return last_index_;
     const auto found = std::lower_bound(table_.begin(), table_.end(), std::pair<std::uint32_t, std::size_t>{id, 0});
     const bool known = id != 0 && found != table_.end() && found->first == id && found->second <= 0xFFFF;
-    return known ? static_cast<std::uint16_t>(found->second) : 0;
+    last_id_ = id;
+    last_index_ = known ? static_cast<std::uint16_t>(found->second) : 0;
+    return last_index_;
   }
 
  private:
   std::vector<std::pair<std::uint32_t, std::size_t>> table_;
+  std::uint32_t last_id_ = 0;
+  std::uint16_t last_index_ = 0;
 };
 
 // Lambert shading, light at the camera, the normal from the neighbouring
@@ -114,18 +120,17 @@ void append(std::string& out, T value) {
 void pad_to_4(std::string& out) { out.append((4 - out.size() % 4) % 4, '\0'); }
 
 std::int16_t millimetres(float metres) {
-  return static_cast<std::int16_t>(std::clamp(std::lround(metres * 1000.0f), -32767L, 32767L));
+  return static_cast<std::int16_t>(std::clamp(std::lrint(metres * 1000.0f), -32767L, 32767L));
 }
 
-// Every finite sample point, thinned to kMaxPoints3d.
+// The finite ones of every n-th sample point: kMaxPoints3d at most.
 std::vector<std::size_t> points_3d(const FrameSample& frame) {
-  std::vector<std::size_t> finite;
-  for (std::size_t i = 0; i < frame.points.size(); ++i) {
-    if (frame.points[i].allFinite()) finite.push_back(i);
-  }
-  const std::size_t step = std::max<std::size_t>(1, (finite.size() + kMaxPoints3d - 1) / kMaxPoints3d);
+  const std::size_t step = std::max<std::size_t>(1, (frame.points.size() + kMaxPoints3d - 1) / kMaxPoints3d);
   std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < finite.size(); i += step) kept.push_back(finite[i]);
+  kept.reserve(frame.points.size() / step + 1);
+  for (std::size_t i = 0; i < frame.points.size(); i += step) {
+    if (std::isfinite(frame.points[i].z())) kept.push_back(i);
+  }
   return kept;
 }
 
@@ -202,7 +207,7 @@ Json header_json(const FrameSample* frame, const RunFigures& figures, std::size_
 
 // The pixels' segment indices as runs: a segment covers whole stretches of a
 // row, so a frame takes a few thousand runs instead of one value per pixel.
-void append_label_runs(std::string& out, const FrameSample& frame, const SegmentIndex& index) {
+void append_label_runs(std::string& out, const FrameSample& frame, SegmentIndex& index) {
   const std::size_t count_at = out.size();
   append<std::uint32_t>(out, 0);
   std::uint32_t runs = 0;
@@ -219,7 +224,7 @@ void append_label_runs(std::string& out, const FrameSample& frame, const Segment
   std::memcpy(out.data() + count_at, &runs, sizeof runs);
 }
 
-void append_image(std::string& out, const FrameSample& frame, const SegmentIndex& index) {
+void append_image(std::string& out, const FrameSample& frame, SegmentIndex& index) {
   append_label_runs(out, frame, index);
   append_shade(out, frame);
   pad_to_4(out);
@@ -267,7 +272,7 @@ std::string encode_frame(const FrameSample* frame, const RunFigures& figures) {
   out += header;
   pad_to_4(out);
   if (frame == nullptr) return out;
-  const SegmentIndex index(frame->segments, frame->support_id);
+  SegmentIndex index(frame->segments, frame->support_id);
   append_image(out, *frame, index);
   std::vector<std::uint16_t> points;  // x, y, z (as i16), segment, per point
   points.reserve(4 * kept.size());
