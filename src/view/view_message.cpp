@@ -123,13 +123,21 @@ std::int16_t millimetres(float metres) {
   return static_cast<std::int16_t>(std::clamp(std::lrint(metres * 1000.0f), -32767L, 32767L));
 }
 
-// The finite ones of every n-th sample point: kMaxPoints3d at most.
+// The finite sample points, thinned to kMaxPoints3d at most: every n-th row
+// and column of an image (an even grid on the surfaces), every n-th point else.
 std::vector<std::size_t> points_3d(const FrameSample& frame) {
-  const std::size_t step = std::max<std::size_t>(1, (frame.points.size() + kMaxPoints3d - 1) / kMaxPoints3d);
+  const std::size_t count = frame.points.size();
+  const bool image = frame.width > 0;
+  std::size_t step = 1;
+  while (count / (image ? step * step : step) > kMaxPoints3d) ++step;
+  const std::size_t width = image ? frame.width : count, rows = image ? frame.height : 1;
+  const std::size_t row_step = image ? step : 1, column_step = step;
   std::vector<std::size_t> kept;
-  kept.reserve(frame.points.size() / step + 1);
-  for (std::size_t i = 0; i < frame.points.size(); i += step) {
-    if (std::isfinite(frame.points[i].z())) kept.push_back(i);
+  kept.reserve(kMaxPoints3d + 1);
+  for (std::size_t y = 0; y < rows; y += row_step) {
+    for (std::size_t x = 0; x < width; x += column_step) {
+      if (std::isfinite(frame.points[y * width + x].z())) kept.push_back(y * width + x);
+    }
   }
   return kept;
 }

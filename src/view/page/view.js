@@ -165,7 +165,7 @@ function drawPoints(frame) {
   for (const [, u, v, index] of screen) {
     const color = colorOf(header, index) || [150, 150, 150];
     context.fillStyle = `rgb(${color[0]},${color[1]},${color[2]})`;
-    context.fillRect(Math.round(u) - 1, Math.round(v) - 1, 2, 2);  // whole pixels: no blending at the edges
+    context.fillRect(Math.round(u) - 1, Math.round(v) - 1, 3, 3);  // whole pixels: no blending at the edges
   }
 }
 
