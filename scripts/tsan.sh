@@ -43,5 +43,18 @@ if [[ -z $loaded || $(readlink -f "$loaded") != $(readlink -f "$onetbb/lib/$(bas
   ldd "$tests" | grep -i tbb >&2
   exit 1
 fi
-TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 ${TSAN_OPTIONS:-}" \
-  "$tests" --gtest_filter='FrameAdmission.*:UnionFind.*:Pipeline*:BackgroundStream.*:PushSource.*:Threads/Determinism.*/box_on_table_*-*_1threads'
+# In two halves at once (gtest's sharding: every test runs in exactly one), each
+# half's log printed after it: 72 s against 92 s in one process on this 2-core machine.
+export TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 ${TSAN_OPTIONS:-}"
+filter='FrameAdmission.*:UnionFind.*:Pipeline*:BackgroundStream.*:PushSource.*:Threads/Determinism.*/box_on_table_*-*_1threads'
+logs=$(mktemp -d "${TMPDIR:-/tmp}/lccp_tsan.XXXXXX")
+trap 'rm -rf "$logs"' EXIT
+for shard in 0 1; do
+  GTEST_TOTAL_SHARDS=2 GTEST_SHARD_INDEX=$shard "$tests" --gtest_filter="$filter" >"$logs/$shard.log" 2>&1 &
+done
+failed=0
+for shard in 0 1; do
+  wait -n || failed=1
+done
+cat "$logs/0.log" "$logs/1.log"
+exit "$failed"
