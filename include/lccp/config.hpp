@@ -80,7 +80,18 @@ struct SupervoxelConfig {
 // noise's standard deviation is sigma0 + sigma2 (z - z_min)^2 (Nguyen, Izadi
 // and Lovell 2012, "Modeling Kinect sensor noise"). A point is on a plane when
 // it lies within one step and two standard deviations of it.
+//
+// depth_steps, beyond the paper (docs/ARCHITECTURE.md, departures): where the
+// cloud is in the camera's frame (camera cells), depth differences below one
+// step are not measured. A camera cell is v z deep, shallower than a step
+// beyond z_q = v / q (q = d / (f b); Kinect v1, P1: 1.74 m; at 4.5 m 5.8 cm
+// steps against 2.3 cm cells), so pixels one step apart fall in cells that
+// are not adjacent and one slanted wall becomes terraces no adjacency joins.
+// With the key a camera cell is never shallower than a step, and the
+// smoothness check (ConvexityConfig) never takes an offset within half a step
+// (the sensor's rounding) for a step between surfaces. Off in the paper.
 struct SensorConfig {
+  bool depth_steps = true;
   float focal_px = 580.0f;             // f, the disparity's focal length (pixels)
   float baseline_m = 0.075f;           // b, projector to camera
   float disparity_step_px = 0.125f;    // d, the disparity's quantization (1/8 pixel)
@@ -88,7 +99,10 @@ struct SensorConfig {
   float axial_sigma_per_m2 = 0.0019f;  // sigma2
   float min_range_m = 0.4f;            // z_min; nearer depths count as z_min
 
-  // z^2 d / (f b) + 2 (sigma0 + sigma2 (z - z_min)^2), z clamped to z_min from below (metres).
+  // q z^2 with q = d / (f b): the step between neighbouring measurable depths (metres).
+  float depth_step_m(float z_m) const { return z_m * z_m * disparity_step_px / (focal_px * baseline_m); }
+  float step_per_m2() const { return disparity_step_px / (focal_px * baseline_m); }  // q (1/metre)
+  // depth_step_m(z) + 2 (sigma0 + sigma2 (z - z_min)^2), z clamped to z_min from below (metres).
   float depth_tolerance_m(float z_m) const;
 };
 

@@ -72,7 +72,7 @@ bool RegionConfig::bounded() const {
 float SensorConfig::depth_tolerance_m(float z_m) const {
   const float z = std::max(z_m, min_range_m);
   const float beyond = z - min_range_m;
-  return z * z * disparity_step_px / (focal_px * baseline_m) + 2.0f * (axial_sigma_m + axial_sigma_per_m2 * beyond * beyond);
+  return depth_step_m(z) + 2.0f * (axial_sigma_m + axial_sigma_per_m2 * beyond * beyond);
 }
 
 void validate(const SceneConfig& c) {

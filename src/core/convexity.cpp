@@ -60,9 +60,17 @@ float step_distance_m(const Patch& p1, const Patch& p2) {
   return std::min(std::abs(d.dot(p1.normal)), std::abs(d.dot(p2.normal)));
 }
 
+// max(smoothness_threshold v, q z^2 / 2), z the patches' mean depth: the sensor
+// rounds a depth to the nearest step, so an offset within half a step is not
+// measured (SensorConfig::depth_steps).
+float smoothness_slack_m(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes) {
+  const float z = 0.5f * (p1.centroid.z() + p2.centroid.z());
+  return std::max(config.smoothness_threshold * sizes.voxel_size_m, 0.5f * sizes.depth_step_per_m2 * z * z);
+}
+
 bool smoothness_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes) {
   const float explained_m = p1.normal.cross(p2.normal).norm() * sizes.seed_size_m;
-  return step_distance_m(p1, p2) <= explained_m + config.smoothness_threshold * sizes.voxel_size_m;
+  return step_distance_m(p1, p2) <= explained_m + smoothness_slack_m(p1, p2, config, sizes);
 }
 
 std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges, const std::vector<Eigen::Vector3f>& centroids,

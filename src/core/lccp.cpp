@@ -80,7 +80,7 @@ void LccpSegmenter::leave_out(SegmentationWork& w) const {
 
 void LccpSegmenter::build_voxels(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::voxelize);
-  w.grid = voxelize(w.cloud, config_.voxels, config_.limits, w.skip);
+  w.grid = voxelize(w.cloud, config_.voxels, config_.sensor, config_.limits, w.skip);
 }
 
 void LccpSegmenter::compute_normals(SegmentationWork& w) const {
@@ -105,7 +105,9 @@ void LccpSegmenter::build_graph(SegmentationWork& w) const {
 
 void LccpSegmenter::classify_convexity(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::classify);
-  const PatchSizes sizes{config_.voxels.voxel_size_m, config_.supervoxels.seed_size_m};
+  const bool camera_frame = config_.sensor.depth_steps && w.grid.binning == Binning::camera;
+  const PatchSizes sizes{config_.voxels.voxel_size_m, config_.supervoxels.seed_size_m,
+                         camera_frame ? config_.sensor.step_per_m2() : 0.0f};
   w.convex = classify_edges(w.edges, w.supervoxels.centroids, w.supervoxels.normals, config_.convexity, sizes);
 }
 

@@ -62,19 +62,46 @@ int floor_to_int(float x) {
   return truncated - (x < static_cast<float>(truncated));
 }
 
-// floor(ln z / v), the depth coordinate of camera cells, remembered per depth:
-// a depth camera's depths take few distinct values (a Kinect frame of mOSD:
-// under 400 among 170 000 points), so a small direct-mapped table of the depths
-// seen (Fibonacci hashing of their bits, Knuth TAOCP vol. 3, 6.4) spares most
-// logarithms. A depth's level is computed as before, only not again.
+// The depth coordinate of camera cells, in cells: ln z / v (PCL's camera
+// transform; a cell is v z deep), or with SensorConfig::depth_steps
+// never shallower than the sensor's depth step q z^2: beyond z_q = v / q it
+// goes on as ln(z_q) / v + (1 / z_q - 1 / z) / q, whose slope 1 / (q z^2) is
+// one cell per step. Measurable depths are z_n = 1 / (n q) (Khoshelham and
+// Elberink 2012), so there neighbouring ones lie exactly one cell apart.
+class DepthAxis {
+ public:
+  DepthAxis(float voxel_size, const SensorConfig& sensor)
+      : inverse_size_(1.0f / voxel_size),
+        step_from_(sensor.depth_steps && sensor.step_per_m2() > 0.0f ? voxel_size / sensor.step_per_m2()
+                                                               : std::numeric_limits<float>::infinity()),
+        inverse_step_(1.0f / sensor.step_per_m2()),
+        at_step_from_(std::log(step_from_) * inverse_size_ + inverse_step_ / step_from_) {}
+
+  float inverse_size() const { return inverse_size_; }
+  float operator()(float z) const {
+    return z <= step_from_ ? std::log(z) * inverse_size_ : at_step_from_ - inverse_step_ / z;
+  }
+
+ private:
+  float inverse_size_;  // 1 / v
+  float step_from_;     // z_q; infinite: ln z / v at every depth
+  float inverse_step_;  // 1 / q
+  float at_step_from_;  // ln(z_q) / v + 1 / (q z_q)
+};
+
+// floor(depth coordinate), remembered per depth: a depth camera's depths take
+// few distinct values (a Kinect frame of mOSD: under 400 among 170 000
+// points), so a small direct-mapped table of the depths seen (Fibonacci
+// hashing of their bits, Knuth TAOCP vol. 3, 6.4) spares most logarithms. A
+// depth's level is computed as before, only not again.
 class DepthLevels {
  public:
-  explicit DepthLevels(float inverse_size) : inverse_size_(inverse_size) { slots_.fill({kNoDepth, 0}); }
+  explicit DepthLevels(const DepthAxis& axis) : axis_(axis) { slots_.fill({kNoDepth, 0}); }
 
   int level(float z) {
     const auto bits = std::bit_cast<std::uint32_t>(z);
     Slot& slot = slots_[(bits * 0x9e3779b1u) >> (32 - kSlotBits)];
-    if (slot.bits != bits) slot = {bits, floor_to_int(std::log(z) * inverse_size_)};
+    if (slot.bits != bits) slot = {bits, floor_to_int(axis_(z))};
     return slot.level;
   }
 
@@ -86,7 +113,7 @@ class DepthLevels {
     int level;
   };
   std::array<Slot, std::size_t{1} << kSlotBits> slots_;
-  float inverse_size_;
+  DepthAxis axis_;
 };
 
 // The cell of a point: cubes of size v, or cells of size v in (x/z, y/z, ln z)
@@ -135,6 +162,7 @@ struct CellJob {
   const std::uint8_t* skip;  // null: none skipped
   float inverse_size;
   Binning binning;
+  DepthAxis depth;  // camera cells' depth coordinate
   float slope;  // camera cells: tan of half the field of view taken
   float max_coordinate;
 };
@@ -143,7 +171,7 @@ struct CellJob {
 // beyond max_coordinate, or outside the view for camera cells), and their
 // bounds. The bounds are kept in scalars: GCC keeps Eigen arrays in memory.
 CellBounds cells_of_points(const CellJob job, std::size_t begin, std::size_t end, Cell* cells) {
-  DepthLevels levels(job.inverse_size);
+  DepthLevels levels(job.depth);
   CellBounds bounds;
   std::array<int, 3> low = {bounds.min.x(), bounds.min.y(), bounds.min.z()};
   std::array<int, 3> high = {bounds.max.x(), bounds.max.y(), bounds.max.z()};
@@ -174,11 +202,11 @@ CellBounds cells_of_points(const CellJob job, std::size_t begin, std::size_t end
 // Cells of every point (kInvalidCell where non-finite or skipped) and their
 // bounds, in one pass. Points beyond max_coordinate get no cell; bounds.farthest
 // tells. With camera binning, a point outside the view (`slope`) gets no cell; bounds.outside_view tells.
-CellBounds compute_cells(const CloudView& cloud, const std::vector<std::uint8_t>& skip, float voxel_size,
-                         Binning binning, float slope, float max_coordinate, std::vector<Cell>& cells) {
+CellBounds compute_cells(const CloudView& cloud, const std::vector<std::uint8_t>& skip, Binning binning,
+                         const DepthAxis& depth, float slope, float max_coordinate, std::vector<Cell>& cells) {
   cells.resize(cloud.size());
-  const CellJob job{cloud.points.data(), skip.empty() ? nullptr : skip.data(), 1.0f / voxel_size, binning, slope,
-                    max_coordinate};
+  const CellJob job{cloud.points.data(), skip.empty() ? nullptr : skip.data(), depth.inverse_size(), binning, depth,
+                    slope, max_coordinate};
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, cloud.size()), CellBounds{},
       [&](const auto& range, CellBounds bounds) {
@@ -508,15 +536,16 @@ VoxelGrid no_voxels(const CloudView& cloud, Binning binning) {
 
 }  // namespace
 
-VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const LimitsConfig& limits,
-                   const std::vector<std::uint8_t>& skip) {
+VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const SensorConfig& sensor,
+                   const LimitsConfig& limits, const std::vector<std::uint8_t>& skip) {
   check_limit(cloud.size() <= limits.max_points, "the cloud has " + std::to_string(cloud.size()) + " points",
               "max_points", limits.max_points);
   const BinningPlan plan = plan_binning(cloud, config.binning);
   Binning binning = plan.first;
   const float slope = plan.slope;
   std::vector<Cell> cells;
-  CellBounds bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, slope, limits.max_coordinate_m, cells);
+  const DepthAxis depth(config.voxel_size_m, sensor);
+  CellBounds bounds = compute_cells(cloud, skip, binning, depth, slope, limits.max_coordinate_m, cells);
   check_limit(bounds.farthest <= limits.max_coordinate_m,
               "a point lies " + format_number(bounds.farthest) + " m from the origin along an axis",
               "max_coordinate_m", limits.max_coordinate_m);
@@ -525,7 +554,7 @@ VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const Limi
   }
   if (bounds.outside_view) {
     binning = Binning::euclidean;
-    bounds = compute_cells(cloud, skip, config.voxel_size_m, binning, slope, limits.max_coordinate_m, cells);
+    bounds = compute_cells(cloud, skip, binning, depth, slope, limits.max_coordinate_m, cells);
   }
   if (bounds.count == 0) return no_voxels(cloud, binning);
   const CellKeys keys(bounds.min, bounds.max);

@@ -191,6 +191,8 @@ std::vector<Key> method_keys() {
 // The depth sensor's noise model (SensorConfig).
 std::vector<Key> sensor_keys() {
   return {
+      bool_key("sensor_depth_steps", [](auto& c) -> auto& { return c.sensor.depth_steps; },
+               "beyond the paper: camera cells and the smoothness check's slack at least one depth step deep (true/false)"),
       float_key("sensor_focal_px", [](auto& c) -> auto& { return c.sensor.focal_px; },
                 "flood: the depth sensor's disparity focal length f (pixels)"),
       float_key("sensor_baseline_m", [](auto& c) -> auto& { return c.sensor.baseline_m; },

@@ -29,16 +29,19 @@ bool sanity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& c
 // Eq. (5): CC and (SC if enabled).
 bool is_convex(const Patch& p1, const Patch& p2, const ConvexityConfig& config);
 
-// The sizes the smoothness check measures steps against: v and s.
+// The sizes the smoothness check measures steps against: v, s, and in a
+// camera's frame the sensor's depth step q z^2 (SensorConfig::depth_steps).
 struct PatchSizes {
   float voxel_size_m;
   float seed_size_m;
+  float depth_step_per_m2 = 0.0f;  // q; 0: no sensor step
 };
 // The patches' offset along their normals: min(|d . n1|, |d . n2|), d = x1 - x2, metres.
 float step_distance_m(const Patch& p1, const Patch& p2);
 // PCL's smoothness check (beyond the paper; pcl/segmentation/impl/
 // lccp_segmentation.hpp, connIsConvex): the step is at most |n1 x n2| s, what
-// the patches' angle explains over a seed spacing, plus smoothness_threshold * v.
+// the patches' angle explains over a seed spacing, plus a slack: smoothness_threshold * v,
+// or half the sensor's depth step at the patches' mean depth where that is larger.
 bool smoothness_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes);
 
 // One flag per edge (1 = convex: eq. (5), and smooth if the check is on),

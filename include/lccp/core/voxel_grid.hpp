@@ -45,8 +45,9 @@ struct VoxelGrid {
 // when it exceeds a limit (more points or voxels than allowed, a finite point
 // beyond max_coordinate_m). Points i with skip[i] != 0 are left out (no voxel),
 // as if they were not finite; an empty `skip` leaves none out. A cloud whose
-// finite points are all left out gives a grid without voxels.
-VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const LimitsConfig& limits = {},
-                   const std::vector<std::uint8_t>& skip = {});
+// finite points are all left out gives a grid without voxels. `sensor` sets
+// the depth of camera cells beyond z_q (SensorConfig::depth_steps).
+VoxelGrid voxelize(const CloudView& cloud, const VoxelConfig& config, const SensorConfig& sensor = {},
+                   const LimitsConfig& limits = {}, const std::vector<std::uint8_t>& skip = {});
 
 }  // namespace lccp
