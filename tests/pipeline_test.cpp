@@ -363,6 +363,43 @@ TEST(PipelineDropOldest, DropsAreCountedAndFramesStayInOrder) {
   EXPECT_EQ(seen.indices.back(), kFrames - 1 + gaps);
 }
 
+// A live source gets K synthetic frames through the graph before its own
+// (PipelineConfig::warm_up): none of them reaches the sink, the counts or the
+// stream's ids, so frame 0 gets the ids a fresh tracker gives it.
+TEST(PipelineWarmUp, SyntheticFramesNeverReachTheSinkCountsOrIds) {
+  constexpr std::uint64_t kFrames = 6;
+  const auto frames = [&] {
+    std::vector<Frame> list;
+    for (std::uint64_t i = 0; i < kFrames; ++i) list.push_back(cloud_frame(i, small_cloud()));
+    return list;
+  };
+  Labels first_without_warm_up;
+  VectorSource recording(frames());
+  Pipeline(segmenter(), PipelineConfig{2}).run(recording, [&](FrameResult& r) {
+    if (r.frame.index == 0) first_without_warm_up = r.segmentation.labels;
+  });
+  ASSERT_FALSE(first_without_warm_up.empty());
+
+  for (const unsigned frames_in_flight : {1u, 2u, 3u}) {
+    VectorSource live(frames(), /*live=*/true);
+    Delivered seen;
+    const PipelineStats stats = Pipeline(segmenter(), PipelineConfig{frames_in_flight}).run(live, [&](FrameResult& r) {
+      EXPECT_TRUE(r.error.empty()) << r.error;
+      EXPECT_EQ(r.frame.cloud.size(), small_cloud().size());
+      seen.indices.push_back(r.frame.index);
+      seen.results.push_back(std::move(r));
+    }).stats;
+    EXPECT_EQ(stats.frames_received, kFrames);
+    EXPECT_EQ(stats.frames_completed, seen.indices.size());
+    EXPECT_EQ(stats.frames_failed, 0u);
+    EXPECT_TRUE(stats.adds_up());
+    ASSERT_FALSE(seen.indices.empty());
+    EXPECT_EQ(seen.indices.front(), 0u);
+    EXPECT_EQ(seen.indices.back(), kFrames - 1);
+    EXPECT_TRUE(seen.results.front().segmentation.labels == first_without_warm_up) << "K = " << frames_in_flight;
+  }
+}
+
 TEST(PipelineBlock, IndexGapsAreCountedAsDrops) {
   std::vector<Frame> frames;
   for (std::uint64_t index : {5, 6, 9, 10, 14}) frames.push_back(cloud_frame(index, small_cloud()));

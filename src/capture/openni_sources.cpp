@@ -70,12 +70,15 @@ class RecordingSource final : public FrameSource {
 
 class DeviceSource final : public FrameSource {
  public:
-  explicit DeviceSource(const LiveOptions& options) : options_(options) {
-    stream_.open_live(options_);
-    stream_.start();
-  }
+  explicit DeviceSource(const LiveOptions& options) : options_(options) { stream_.open_live(options_); }
 
+  // The stream starts when the first frame is asked for: a sensor's frames
+  // from before the pipeline was ready (its warm-up) would be lost uncounted.
   std::optional<Frame> next(std::stop_token stop) override {
+    if (!started_) {
+      stream_.start();
+      started_ = true;
+    }
     const int timeout_ms = delivered_ == 0 ? std::max(options_.stall_timeout_ms, options_.first_frame_timeout_ms)
                                            : options_.stall_timeout_ms;
     std::optional<Frame> frame = stream_.wait_and_read(timeout_ms, stop);
@@ -97,6 +100,7 @@ class DeviceSource final : public FrameSource {
  private:
   LiveOptions options_;
   detail::DepthStream stream_;
+  bool started_ = false;
   std::uint64_t delivered_ = 0;
 };
 

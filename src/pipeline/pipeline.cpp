@@ -27,6 +27,7 @@
 #include "frame_admission.hpp"
 #include "lccp/core/back_projection.hpp"
 #include "lccp/error.hpp"
+#include "lccp/synthetic/tabletop_scene.hpp"
 
 namespace lccp {
 namespace {
@@ -123,6 +124,7 @@ class Run {
 
  private:
   Message run_node(const PipelineNode& node, const Message& message) const;
+  void warm_up();
   void capture_frames();
   void take(Frame frame);
   void deliver(const Message& message);
@@ -134,6 +136,7 @@ class Run {
   const std::function<void(FrameResult&)>& sink_;
   RunObserver* const observer_;  // sees each frame before the sink
   const DropPolicy policy_;
+  const std::uint64_t warm_up_frames_;  // the first sequence numbers: thrown away at the end
   std::stop_source halt_;  // no more frames: the caller's stop or a sink error
   detail::FrameAdmission admission_;
   flow::graph graph_;
@@ -161,6 +164,7 @@ Run::Run(const SceneSegmenter& segmenter, FrameSource& source, const std::functi
       sink_(sink),
       observer_(config.observer),
       policy_(drop_policy_for(source)),
+      warm_up_frames_(config.warm_up && source.is_live() ? config.frames_in_flight : 0),
       admission_(config.frames_in_flight,
                  [this](Frame frame, std::uint64_t sequence) {
                    auto message = std::make_shared<FrameInFlight>();
@@ -206,6 +210,22 @@ void Run::fail(std::string error) {
   if (error_.empty()) error_ = std::move(error);
 }
 
+// A live source's first frames would otherwise cost twice the rest: each of
+// the K slots faults in its memory, and the workers start, on them. So K
+// frames of the synthetic table-top scene (VGA, with a Kinect's noise) go
+// through the graph first, and deliver() throws them away. The K slots are
+// free, so none waits; this thread then works on them (wait_for_all) until
+// they are done: with one thread it is the only one that can.
+void Run::warm_up() {
+  const synthetic::TabletopScene scene;
+  for (std::uint64_t i = 0; i < warm_up_frames_; ++i) {
+    Frame frame;
+    frame.depth = scene.render(i).depth;
+    if (!admission_.enter_when_free(std::move(frame))) break;
+  }
+  graph_.wait_for_all();
+}
+
 // The capture thread: reads the source until it ends or fails or a halt, and
 // hands every frame to admission. The graph stays busy until this returns.
 void Run::capture_frames() {
@@ -241,9 +261,15 @@ void Run::take(Frame frame) {
 
 void Run::deliver(const Message& message) {
   FrameInFlight& f = *message;
+  const bool warming_up = f.sequence < warm_up_frames_;
   SegmentTracker own = segmenter_.new_tracker();  // a batch of files: ids 1..K per frame
-  run_guarded(f, [&] { segmenter_.assign_ids(*f.work, source_.is_stream() ? tracker_ : own); });
+  run_guarded(f, [&] { segmenter_.assign_ids(*f.work, source_.is_stream() && !warming_up ? tracker_ : own); });
   finish_frame(f);
+  if (warming_up) {
+    f.result = FrameResult{};
+    admission_.release();
+    return;
+  }
   FrameResult& result = f.result;
   const bool stage_failed = !result.error.empty();  // before the sink, which may move the result
   std::uint64_t PipelineStats::*count = &PipelineStats::frames_dropped;
@@ -265,6 +291,7 @@ void Run::deliver(const Message& message) {
 
 PipelineOutcome Run::execute() {
   const Clock::time_point start = Clock::now();
+  warm_up();
   entry_.gateway().reserve_wait();  // released by the capture thread when it ends
   std::thread capture;
   try {

@@ -75,6 +75,7 @@ class RunObserver {
 struct PipelineConfig {
   unsigned frames_in_flight = 2;     // K >= 1: frames in the graph at once
   RunObserver* observer = nullptr;   // outlives the runs; none: nothing is watched
+  bool warm_up = true;               // live sources: K synthetic frames first, thrown away (pipeline.cpp)
 };
 
 struct FrameResult {
