@@ -72,12 +72,15 @@ class ViewServer::Impl {
   class HttpSession;
   class StreamSession;
 
+  // The sink's thread (publish, finish): a change to the published state under
+  // mutex_, then a take_published posted to the server's thread.
+  template <typename Change>
+  void hand_over(Change&& change);
+
   // The server's thread only:
   void accept();
   void open_stream(beast::tcp_stream stream, http::request<http::empty_body> request);
   void stream_opened(const std::shared_ptr<StreamSession>& session);
-  template <typename Change>
-  void hand_over(Change&& change);  // a change to the published state, then a take_published on the server's thread
   void take_published();
   void send_newest();
   void close_when_sent(Clock::time_point deadline);
