@@ -73,7 +73,7 @@ TEST(MinObjectPoints, ASpeckBelowTheSizeIsNoObjectAndItsPointsAreUnassigned) {
 }
 
 TEST(MinObjectPoints, OnThePartLevelIsRefused) {
-  expect_lccp_error([] { SceneSegmenter(resolve_config("robot", {"parts.min_object_points=10"})); },
+  expect_lccp_error([] { SceneSegmenter(resolve_config("paper-robot", {"parts.min_object_points=10"})); },
                     {"parts.min_object_points", "objects"});
 }
 

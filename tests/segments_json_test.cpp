@@ -190,6 +190,7 @@ SceneSegmentation two_level_scene() {
   SceneSegmentation scene;
   scene.support_plane = Plane{Eigen::Vector3f(0, -1, 0), 0.75f};
   scene.support_id = 1;
+  scene.support_noise_m = 0.0015f;
   ObjectSegments object;
   object.object = geometry(2, 0);
   object.object.adjacent = {{1, Boundary::concave}};
@@ -255,10 +256,11 @@ TEST(SegmentsJson, TwoLevelSceneFollowsTheSchema) {
             (std::vector<std::string>{"frame", "timestamp_us", "support_plane", "objects", "new_ids", "gone_ids"}));
   EXPECT_EQ(doc["frame"].text, "42");
   EXPECT_EQ(doc["timestamp_us"].text, "1234567890123");
-  EXPECT_EQ(doc["support_plane"].keys(), (std::vector<std::string>{"id", "normal", "d"}));
+  EXPECT_EQ(doc["support_plane"].keys(), (std::vector<std::string>{"id", "normal", "d", "noise_m"}));
   EXPECT_EQ(doc["support_plane"]["id"].text, "1");
   expect_vector(doc["support_plane"]["normal"], Eigen::Vector3f(0, -1, 0), "normal");
   EXPECT_EQ(doc["support_plane"]["d"].text, "0.75");
+  EXPECT_EQ(doc["support_plane"]["noise_m"].text, "0.0015");
   ASSERT_EQ(doc["objects"].items.size(), 1u);
   const Json& object = doc["objects"][0];
   expect_segment(object, scene.segments[0].object, true);

@@ -320,3 +320,40 @@ TEST(SupportPlane, PlaneThroughTheSensorIsOrientedAlongUp) {
 
 }  // namespace
 }  // namespace lccp
+
+namespace lccp {
+namespace {
+
+// With support_noise_sigmas the band follows the plane's own noise: a table
+// with +-1 mm of noise keeps 99 % of its points (the band scales as a
+// Kinect's noise does, z^2; this noise does not grow with depth, so the
+// nearest points' is wider than their band), and a box standing on it
+// keeps its foot (only its lowest row of points, within half a depth step of
+// the table, goes to the plane); the 1 cm band takes its lowest centimetre.
+TEST(SupportPlane, ANoiseScaledBandLeavesObjectsTheirFoot) {
+  SceneBuilder b(kEye);
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
+  b.add(test::centered_rect({0, 0, 0}, X, 1.0, Y, 0.8), 0.01, 0.001, kTablePoint);
+  b.add_box(0.0, 0.0, 0.15, 0.12, 0.005);
+  const Scene s = b.done();
+  std::size_t lowest_row = 0;  // box side points less than 2 mm above the table
+  for (std::size_t i = 0; i < s.part.size(); ++i) {
+    const double height = s.table_normal.dot(s.cloud.points[i].cast<double>()) + s.table_d;
+    lowest_row += s.part[i] == kBoxSide && height < 0.002;
+  }
+  ASSERT_GT(lowest_row, 0u);
+  const auto fixed = find_support_plane(s.cloud, table_config());
+  SupportPlaneConfig scaled = table_config();
+  scaled.noise_sigmas = 3.0f;
+  const auto band = find_support_plane(s.cloud, scaled);
+  ASSERT_TRUE(fixed.has_value() && band.has_value());
+  EXPECT_GE(marked(*band, s, kTablePoint), 0.99 * static_cast<double>(count_part(s, kTablePoint)));
+  EXPECT_LE(marked(*band, s, kBoxSide), lowest_row);
+  EXPECT_GE(marked(*fixed, s, kBoxSide), 3 * lowest_row);  // 1 cm of each side: rows at 0, 5 and 10 mm
+  // Uniform noise in +-1 mm: median distance 0.5 mm, robust sigma 1.4826 * 0.5 mm.
+  EXPECT_NEAR(band->noise_m, 0.00074f, 0.00015f);
+  EXPECT_NEAR(fixed->noise_m, band->noise_m, 1e-6f);  // the same plane, the same noise
+}
+
+}  // namespace
+}  // namespace lccp

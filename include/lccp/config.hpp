@@ -130,6 +130,15 @@ struct SupportPlaneConfig {
   float min_inlier_share = 0.1f;      // fewer inliers (share of finite points): no support plane
   std::uint32_t iterations = 256;     // RANSAC hypotheses
   std::uint32_t seed = 1;             // RANSAC random seed: fixed, so every run finds the same plane
+  // Beyond the paper: a noise-scaled band. 0: every point within distance_m is
+  // on the plane (the paper's band, which takes the lowest centimetre of every
+  // object standing on it). k > 0: a point at depth z is on the plane within
+  // k s z^2 of it, s z^2 the robust standard deviation of the plane's own
+  // inliers' distances scaled as the Kinect's noise and depth step scale
+  // (Khoshelham and Elberink 2012: both grow as z^2); never less than half
+  // the sensor's depth step (its rounding), never more than distance_m.
+  // 3: a Gaussian's 99.7 %, and a uniform rounding error's whole width.
+  float noise_sigmas = 0.0f;
 };
 
 // The region of interest: an axis-aligned box in the cloud's frame (metres).
@@ -180,6 +189,35 @@ struct LimitsConfig {
   float max_coordinate_m = 500.0f;
 };
 
+// Beyond the paper, for a robot on a cluttered table (SceneSegmenter, stage 9,
+// src/objects/grouping.cpp): with objects_from_parts, this level's segments
+// are the parts, and the objects are unions of them, grouped by how they rest
+// on the support plane. A part that touches the support (its lowest point
+// within contact_m of the plane), or that meets another part where that
+// part's surface faces up (it rests on an upward face: a box on a box), is the
+// body of an object of its own. A part that does neither hangs off the side
+// of a neighbour (a handle, a spout, a knob) and joins the neighbour it shares
+// most supervoxel edges with; so does a part lying inside a neighbour's
+// footprint, below its top (a container's floor), and a part that continues
+// another behind a nearer object (occluded_gap_m). The paper's object level
+// (beta_thresh 180 deg after plane removal, config/paper-robot.yaml) joins
+// every pair of touching objects. Needs the support plane.
+struct GroupingConfig {
+  bool objects_from_parts = false;
+  // A Kinect's noise at a table's range (3 sigma at 1.5 m: 1.2 cm, SensorConfig)
+  // and the old support band (1 cm) both leave a standing object's foot this close.
+  float contact_m = 0.015f;
+  // A face tilted less than this from the support's normal faces up: a thing
+  // can rest on it (the friction cone of most household surfaces is narrower).
+  float upward_max_tilt_deg = 45.0f;
+  // Two parts that do not touch are one surface seen on either side of a
+  // nearer object when the paper's convexity test (eq. (5)) joins their
+  // nearest patches across the gap and the sensor cannot see the gap
+  // (src/objects/occlusion.hpp); gaps up to this wide (a mug or a box in
+  // front of a box).
+  float occluded_gap_m = 0.15f;
+};
+
 struct LccpConfig {
   RegionConfig region;
   SupportPlaneConfig support;
@@ -189,15 +227,22 @@ struct LccpConfig {
   SensorConfig sensor;
   ConvexityConfig convexity;
   FilterConfig filter;
+  GroupingConfig grouping;
   LimitsConfig limits;
 };
 
 // A run's configuration: one level of LCCP, or two, as in the paper's robot
 // application (Sec. III.C, Fig. 5 B and C): objects first (after the support
 // plane is removed), then each object partitioned into parts.
+//
+// Or, with objects.grouping.objects_from_parts, the first level's segments are
+// the parts and the objects are unions of them (GroupingConfig); `parts` is
+// then empty. Either way a two-level result has objects and parts.
 struct SceneConfig {
-  LccpConfig objects;               // the first level: each of its segments is an object
-  std::optional<LccpConfig> parts;  // the second level, within each object; empty: one level
+  LccpConfig objects;               // the first level: each of its segments is an object (or a part, grouping)
+  std::optional<LccpConfig> parts;  // the second level, within each object; empty: one level (or grouping)
+
+  bool two_levels() const { return parts.has_value() || objects.grouping.objects_from_parts; }
 };
 
 // VCCS's number of growth passes for seed size s and voxel size v: int(1.8 s / v) - 1,

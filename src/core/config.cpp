@@ -41,6 +41,16 @@ void validate_support(const SupportPlaneConfig& s) {
   require(in_range(s.max_tilt_deg, 0.0f, 90.0f), "support_max_tilt_deg", "in [0, 90]", s.max_tilt_deg);
   require(in_range(s.min_inlier_share, 0.0f, 1.0f), "support_min_share", "in [0, 1]", s.min_inlier_share);
   require(s.iterations > 0 && s.iterations <= 100000u, "support_iterations", "in [1, 100000]", s.iterations);
+  require(in_range(s.noise_sigmas, 0.0f, 100.0f), "support_noise_sigmas", "in [0, 100]", s.noise_sigmas);
+}
+
+void validate_grouping(const LccpConfig& c) {
+  const GroupingConfig& g = c.grouping;
+  require(in_range(g.contact_m, 0.0f, 10.0f), "object_contact_m", "in [0, 10]", g.contact_m);
+  require(in_range(g.upward_max_tilt_deg, 0.0f, 90.0f), "upward_max_tilt_deg", "in [0, 90]", g.upward_max_tilt_deg);
+  require(in_range(g.occluded_gap_m, 0.0f, 10.0f), "occluded_gap_m", "in [0, 10]", g.occluded_gap_m);
+  require(!g.objects_from_parts || c.support.enabled, "objects_from_parts",
+          "false without support_plane: true (parts are grouped by how they rest on the support)", g.objects_from_parts);
 }
 
 void validate_sensor(const SensorConfig& s) {
@@ -78,10 +88,16 @@ float SensorConfig::depth_tolerance_m(float z_m) const {
 void validate(const SceneConfig& c) {
   validate(c.objects);
   if (!c.parts) return;
+  if (c.objects.grouping.objects_from_parts) {
+    throw Error("config key 'objects_from_parts' makes the objects from this level's segments: drop the parts: map");
+  }
   try {
     validate(*c.parts);
   } catch (const Error& e) {
     throw Error(std::string("parts: ") + e.what());
+  }
+  if (c.parts->grouping.objects_from_parts) {
+    throw Error("config key 'parts.objects_from_parts' must be false: objects are grouped at the first level");
   }
   if (c.parts->support.enabled) {
     throw Error("config key 'parts.support_plane' must be false: the support plane is removed once, before the objects");
@@ -91,6 +107,7 @@ void validate(const SceneConfig& c) {
 void validate(const LccpConfig& c) {
   validate_region(c.region);
   validate_support(c.support);
+  validate_grouping(c);
   require(std::isfinite(c.voxels.voxel_size_m) && c.voxels.voxel_size_m > 0.0f, "voxel_size_m", "> 0",
           c.voxels.voxel_size_m);
   require(std::isfinite(c.supervoxels.seed_size_m) && c.supervoxels.seed_size_m >= c.voxels.voxel_size_m,

@@ -38,9 +38,9 @@ void keep_region(SegmentationWork& w, const RegionConfig& region) {
 }
 
 // The support plane's points are left out of the segmentation (Sec. III.C).
-void remove_support(SegmentationWork& w, const SupportPlaneConfig& config) {
+void remove_support(SegmentationWork& w, const SupportPlaneConfig& config, const SensorConfig& sensor) {
   if (!config.enabled) return;
-  w.support = find_support_plane(w.cloud, config, w.skip);
+  w.support = find_support_plane(w.cloud, config, w.skip, sensor);
   if (!w.support) return;
   leave_out_points(w, [&](std::size_t i) { return w.support->on_plane[i] != 0; });
 }
@@ -75,7 +75,7 @@ void LccpSegmenter::segment(SegmentationWork& w) const {
 void LccpSegmenter::leave_out(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::support);
   keep_region(w, config_.region);
-  remove_support(w, config_.support);
+  remove_support(w, config_.support, config_.sensor);
 }
 
 void LccpSegmenter::build_voxels(SegmentationWork& w) const {

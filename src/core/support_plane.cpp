@@ -66,6 +66,23 @@ struct Samples {
 // is_finite(p), cheaper: x * 0 is NaN exactly when x is NaN or infinite.
 bool finite_point(const Eigen::Vector3f& p) { return p.x() * 0.0f + p.y() * 0.0f + p.z() * 0.0f == 0.0f; }
 
+// How far from the plane a point at depth z may lie and be on it: distance_m,
+// or (noise_sigmas > 0) k s z^2 between half a depth step, q z^2 / 2, and
+// distance_m (SupportPlaneConfig::noise_sigmas). z below the sensor's nearest
+// range counts as that range.
+struct Band {
+  float max_m = 0;
+  float sigmas_per_m2 = 0;     // k s; 0: the band is max_m everywhere
+  float half_step_per_m2 = 0;  // q / 2
+  float min_z = 0;
+
+  bool fixed() const { return sigmas_per_m2 == 0.0f; }
+  float at(float z) const {
+    const float z2 = std::max(z, min_z) * std::max(z, min_z);
+    return std::min(max_m, std::max(half_step_per_m2, sigmas_per_m2) * z2);
+  }
+};
+
 // The points that take part: finite and not skipped.
 struct Candidates {
   const CloudView& cloud;
@@ -76,6 +93,10 @@ struct Candidates {
   // Whether point i takes part and lies within distance of the plane (a NaN or infinite point does not).
   bool on(const Plane& plane, float distance, std::size_t i) const {
     return std::abs(plane.distance(cloud.points[i])) <= distance && kept(i);
+  }
+  bool on(const Plane& plane, const Band& band, std::size_t i) const {
+    const Eigen::Vector3f& p = cloud.points[i];
+    return std::abs(plane.distance(p)) <= (band.fixed() ? band.max_m : band.at(p.z())) && kept(i);
   }
 };
 
@@ -250,21 +271,54 @@ Plane oriented(const Plane& p, const Eigen::Vector3f& up) {
   return p;
 }
 
+// 1.4826 times the median of `values` (reordered): a Gaussian's standard
+// deviation when they are its absolute deviations (the MAD; Rousseeuw and
+// Croux, "Alternatives to the median absolute deviation", JASA 88, 1993).
+float robust_sigma(std::vector<float>& values) {
+  if (values.empty()) return 0.0f;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return 1.4826f * *middle;
+}
+
+// The plane's noise from the scoring samples within distance_m of it: its
+// robust sigma in metres, and the band (the sigma of |r| / z^2 times k).
+struct Noise {
+  float sigma_m = 0;
+  Band band;
+};
+
+Noise plane_noise(const Samples& s, const Plane& plane, const SupportPlaneConfig& config, const SensorConfig& sensor) {
+  std::vector<float> distances, per_m2;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const float r = std::abs(plane.distance(s[j]));
+    if (r > config.distance_m) continue;
+    const float z = std::max(s.z[j], sensor.min_range_m);
+    distances.push_back(r), per_m2.push_back(r / (z * z));
+  }
+  Noise noise;
+  noise.sigma_m = robust_sigma(distances);
+  noise.band = {config.distance_m, config.noise_sigmas * robust_sigma(per_m2), 0.5f * sensor.step_per_m2(),
+                sensor.min_range_m};
+  if (config.noise_sigmas == 0.0f) noise.band.sigmas_per_m2 = 0.0f;
+  return noise;
+}
+
 // The support's points, and the count of points that take part (for the inlier share).
 struct Marking {
   SupportPlane support;
   std::uint64_t finite = 0;
 };
 
-Marking marked(const Candidates& candidates, const Plane& plane, float distance) {
+Marking marked(const Candidates& candidates, const Plane& plane, const Band& band) {
   const std::size_t n = candidates.cloud.size();
-  Marking m{SupportPlane{plane, std::vector<std::uint8_t>(n, 0), 0}, 0};
+  Marking m{SupportPlane{plane, std::vector<std::uint8_t>(n, 0), 0, 0.0f}, 0};
   std::vector<std::uint64_t> inliers(block_count(n), 0), finite(inliers.size(), 0);
   for_each_block(n, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::uint8_t* on_plane = m.support.on_plane.data();  // a raw pointer: the byte stores would reload it every point
     std::uint64_t on_count = 0, finite_count = 0;
     for (std::size_t i = begin; i < end; ++i) {
-      const bool on = candidates.on(plane, distance, i);
+      const bool on = candidates.on(plane, band, i);
       on_plane[i] = on;
       on_count += on;
       finite_count += candidates.counts(i);
@@ -278,7 +332,7 @@ Marking marked(const Candidates& candidates, const Plane& plane, float distance)
 }  // namespace
 
 std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const SupportPlaneConfig& config,
-                                               const std::vector<std::uint8_t>& skip) {
+                                               const std::vector<std::uint8_t>& skip, const SensorConfig& sensor) {
   if (!(config.distance_m > 0.0f)) return std::nullopt;
   const Criteria criteria = criteria_of(config);
   const Candidates candidates{cloud, skip};
@@ -287,7 +341,9 @@ std::optional<SupportPlane> find_support_plane(const CloudView& cloud, const Sup
   const auto best = best_hypothesis(samples, criteria, config);
   if (!best) return std::nullopt;
   const Plane plane = oriented(refined(candidates, samples, *best, criteria), criteria.up);
-  Marking m = marked(candidates, plane, criteria.distance);
+  const Noise noise = plane_noise(samples, plane, config, sensor);
+  Marking m = marked(candidates, plane, noise.band);
+  m.support.noise_m = noise.sigma_m;
   const double least = static_cast<double>(config.min_inlier_share) * static_cast<double>(m.finite);
   if (static_cast<double>(m.support.inliers) < least) return std::nullopt;
   return std::move(m.support);

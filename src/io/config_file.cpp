@@ -147,6 +147,16 @@ std::vector<Key> scene_keys() {
       float_key("support_min_share", [](auto& c) -> auto& { return c.support.min_inlier_share; },
                 "fewer inliers (share of finite points): no plane"),
       count_key("support_iterations", [](auto& c) -> auto& { return c.support.iterations; }, "RANSAC hypotheses"),
+      float_key("support_noise_sigmas", [](auto& c) -> auto& { return c.support.noise_sigmas; },
+                "on the plane within this many of its inliers' robust sigmas, scaled as z^2 (0: support_distance_m)"),
+      bool_key("objects_from_parts", [](auto& c) -> auto& { return c.grouping.objects_from_parts; },
+               "segments are parts; objects are their unions by support (true/false)"),
+      float_key("object_contact_m", [](auto& c) -> auto& { return c.grouping.contact_m; },
+                "a part whose lowest point is this close to the support stands on it (metres)"),
+      float_key("upward_max_tilt_deg", [](auto& c) -> auto& { return c.grouping.upward_max_tilt_deg; },
+                "a face this close to the support's normal faces up (degrees)"),
+      float_key("occluded_gap_m", [](auto& c) -> auto& { return c.grouping.occluded_gap_m; },
+                "parts this far apart may be one surface behind a nearer object (metres; 0: never)"),
   };
 }
 

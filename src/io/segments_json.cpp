@@ -64,7 +64,7 @@ Json object(const ObjectSegments& object) {
 Json support(const SceneSegmentation& scene) {
   if (!scene.support_plane) return nullptr;
   return {{"id", scene.support_id}, {"normal", vector(scene.support_plane->normal)},
-          {"d", number(scene.support_plane->d)}};
+          {"d", number(scene.support_plane->d)}, {"noise_m", number(scene.support_noise_m)}};
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
+#include "convex_hull.hpp"
 #include "lccp/core/convexity.hpp"
 #include "lccp/error.hpp"
 
@@ -150,7 +151,8 @@ struct Moments {
   Footprint footprint;             // with a plane
 };
 
-std::vector<Moments> segment_moments(const SegmentationWork& w, std::size_t K, const std::optional<PlaneFrame>& frame) {
+std::vector<Moments> segment_moments(const SegmentationWork& w, const SegmentLabels& segments,
+                                     const std::optional<PlaneFrame>& frame) {
   const auto fold = [&](Moments& m, std::size_t i, std::size_t) {
     const Vec3 p = w.cloud.points[i].cast<double>();
     m.n += 1;
@@ -163,7 +165,7 @@ std::vector<Moments> segment_moments(const SegmentationWork& w, std::size_t K, c
     into.n += from.n, into.sum += from.sum, into.outer += from.outer;
     into.footprint.merge(from.footprint);
   };
-  return reduce_per_segment<Moments>(w.result.labels, K, fold, merge);
+  return reduce_per_segment<Moments>(segments.points, segments.count, fold, merge);
 }
 
 // Centroid and principal axes (PCA: eigenvectors of the covariance), columns by
@@ -226,7 +228,8 @@ struct Spread {
 
 // Spread along the principal axes and, with a plane, the hull candidates: a
 // superset of the hull vertices, in point order.
-std::vector<Spread> segment_spreads(const SegmentationWork& w, const std::vector<Principal>& principal,
+std::vector<Spread> segment_spreads(const SegmentationWork& w, const SegmentLabels& segments,
+                                    const std::vector<Principal>& principal,
                                     const std::vector<Moments>& moments, const std::optional<PlaneFrame>& frame) {
   std::vector<Octagon> octagons;
   if (frame) octagons.reserve(moments.size());
@@ -243,36 +246,12 @@ std::vector<Spread> segment_spreads(const SegmentationWork& w, const std::vector
     into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi);
     into.outside.insert(into.outside.end(), from.outside.begin(), from.outside.end());
   };
-  return reduce_per_segment<Spread>(w.result.labels, principal.size(), fold, merge);
+  return reduce_per_segment<Spread>(segments.points, principal.size(), fold, merge);
 }
 
 // --- per segment: hull and rectangle ------------------------------------------------
 
-double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-// Andrew's monotone chain (A. M. Andrew, "Another efficient algorithm for convex
-// hulls in two dimensions", Inf. Process. Lett. 9(5), 1979): the hull vertices
-// counter-clockwise, without collinear ones; one or two points for degenerate sets.
-std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
-  const auto lexicographic = [](const Vec2& a, const Vec2& b) { return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y(); };
-  std::sort(p.begin(), p.end(), lexicographic);
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<Vec2> hull(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {  // lower hull
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {  // upper hull
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  hull.resize(k - 1);  // the last point is the first
-  return hull;
-}
+using detail::convex_hull;
 
 // A rectangle in plane coordinates: side direction u (unit), v = u rotated by
 // +90 deg, and the spans [lo, hi] of the enclosed points along each.
@@ -356,12 +335,13 @@ std::vector<OrientedBox> segment_boxes(const std::vector<Principal>& principal, 
 
 // Per segment, the sum of its voxels' normals, each weighted by its points (all
 // points of a voxel carry its label: labels come from voxels). Serial, in voxel order.
-std::vector<Vec3> normal_sums(const SegmentationWork& w, std::size_t K) {
+std::vector<Vec3> normal_sums(const SegmentationWork& w, const SegmentLabels& segments) {
+  const std::size_t K = segments.count;
   std::vector<Vec3> sums(K, Vec3::Zero());
   const CompressedRows& members = w.grid.points;
   for (std::size_t v = 0; v < w.grid.size(); ++v) {
     if (members.count(v) == 0) continue;
-    const std::uint32_t label = w.result.labels[*members.begin(v)];
+    const std::uint32_t label = segments.points[*members.begin(v)];
     if (label != 0 && label <= K) sums[label - 1] += members.count(v) * w.normals.directions[v].cast<double>();
   }
   return sums;
@@ -385,10 +365,11 @@ Grasp grasp_hint(const Vec3& main_axis, const Vec3& up) {
 // One vote per supervoxel edge between two segments (lo < hi): convex under the
 // paper's basic criterion, eq. (1) without the bias (beta_thresh = 0):
 // (n1 - n2) . (x1 - x2) > 0. Sorted by segment pair.
-std::vector<std::array<std::uint32_t, 3>> boundary_votes(const SegmentationWork& w, std::uint32_t K) {
+std::vector<std::array<std::uint32_t, 3>> boundary_votes(const SegmentationWork& w, const SegmentLabels& segments) {
   ConvexityConfig unbiased;
   unbiased.beta_thresh_deg = 0.0f;
-  const std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
+  const std::vector<std::uint32_t>& segment = segments.supervoxels;
+  const std::uint32_t K = segments.count;
   std::vector<std::array<std::uint32_t, 3>> votes;
   for (const Edge& e : w.edges) {
     const std::uint32_t a = segment[e.a], b = segment[e.b];
@@ -403,8 +384,8 @@ std::vector<std::array<std::uint32_t, 3>> boundary_votes(const SegmentationWork&
 
 // Two segments are adjacent when a supervoxel edge joins them; their boundary is
 // convex when most of those edges are (ties concave). Lists by ascending id.
-void add_adjacency(const SegmentationWork& w, std::vector<SegmentGeometry>& out) {
-  const auto votes = boundary_votes(w, static_cast<std::uint32_t>(out.size()));
+void add_adjacency(const SegmentationWork& w, const SegmentLabels& segments, std::vector<SegmentGeometry>& out) {
+  const auto votes = boundary_votes(w, segments);
   for (std::size_t first = 0, last = 0; first < votes.size(); first = last) {
     std::size_t convex = 0;
     const auto same_pair = [&](std::size_t i) { return votes[i][0] == votes[first][0] && votes[i][1] == votes[first][1]; };
@@ -419,10 +400,10 @@ void add_adjacency(const SegmentationWork& w, std::vector<SegmentGeometry>& out)
   }
 }
 
-void check_work(const SegmentationWork& w) {
-  const bool complete = w.result.labels.size() == w.cloud.size() &&
+void check_work(const SegmentationWork& w, const SegmentLabels& segments) {
+  const bool complete = segments.points.size() == w.cloud.size() &&
                         w.grid.points.rows() == w.grid.size() && w.normals.size() == w.grid.size() &&
-                        w.segment_of_supervoxel.size() == w.supervoxels.size();
+                        segments.supervoxels.size() == w.supervoxels.size();
   if (!complete) throw Error("describe_segments: the segmentation work is incomplete (run every stage first)");
 }
 
@@ -444,22 +425,27 @@ SegmentGeometry describe(std::uint32_t id, const Moments& m, const Principal& p,
 }  // namespace
 
 std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, const std::optional<Plane>& support) {
-  check_work(work);
-  const std::size_t K = work.result.segment_count;
+  return describe_segments(work, {work.result.labels, work.segment_of_supervoxel, work.result.segment_count}, support);
+}
+
+std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, const SegmentLabels& segments,
+                                               const std::optional<Plane>& support) {
+  check_work(work, segments);
+  const std::size_t K = segments.count;
   const std::optional<PlaneFrame> frame = support ? std::optional(plane_frame(*support)) : std::nullopt;
-  const std::vector<Moments> moments = segment_moments(work, K, frame);
+  const std::vector<Moments> moments = segment_moments(work, segments, frame);
   std::vector<Principal> principal(K);
   tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) { principal[k] = principal_frame(moments[k]); });
-  const std::vector<Spread> spreads = segment_spreads(work, principal, moments, frame);
+  const std::vector<Spread> spreads = segment_spreads(work, segments, principal, moments, frame);
   const std::vector<OrientedBox> boxes = segment_boxes(principal, moments, spreads, frame);
-  const std::vector<Vec3> normals = normal_sums(work, K);
+  const std::vector<Vec3> normals = normal_sums(work, segments);
   const Vec3 up = frame ? frame->n : Vec3(0, -1, 0);  // without a plane: the sensor's up, -y
   std::vector<SegmentGeometry> out(K);
   tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) {
     const auto id = static_cast<std::uint32_t>(k + 1);
     out[k] = describe(id, moments[k], principal[k], spreads[k], boxes[k], normals[k], up);
   });
-  add_adjacency(work, out);
+  add_adjacency(work, segments, out);
   return out;
 }
 

@@ -1,8 +1,14 @@
 #include "lccp/objects/scene.hpp"
 
+#include <algorithm>
+#include <iterator>
+#include <numeric>
+#include <utility>
+
 #include <tbb/parallel_for.h>
 
 #include "lccp/error.hpp"
+#include "lccp/objects/grouping.hpp"
 
 namespace lccp {
 namespace {
@@ -67,10 +73,9 @@ Labels to_ids(const Labels& dense, const std::vector<std::uint32_t>& ids, const 
 // Drops the objects of fewer than min_points points (FilterConfig::
 // min_object_points): their points and supervoxels get label 0, and the others
 // are numbered 1..K again in their order (largest first, as relabel_by_size
-// left them).
-void drop_small_objects(SegmentationWork& w, std::uint32_t min_points) {
+// left them). Returns the renaming, old label -> new (0 -> 0).
+std::vector<std::uint32_t> drop_small_objects(SegmentationWork& w, std::uint32_t min_points) {
   const std::uint32_t count = w.result.segment_count;
-  if (min_points == 0 || count == 0) return;
   std::vector<std::uint32_t> points(std::size_t{count} + 1, 0);
   for (const std::uint32_t label : w.result.labels) ++points[label];
   std::vector<std::uint32_t> renamed(std::size_t{count} + 1, 0);
@@ -78,10 +83,37 @@ void drop_small_objects(SegmentationWork& w, std::uint32_t min_points) {
   for (std::uint32_t k = 1; k <= count; ++k) {
     if (points[k] >= min_points) renamed[k] = ++kept;
   }
-  if (kept == count) return;
+  if (kept == count) return renamed;
   for (std::uint32_t& label : w.result.labels) label = renamed[label];
   for (std::uint32_t& segment : w.segment_of_supervoxel) segment = renamed[segment];
   w.result.segment_count = kept;
+  return renamed;
+}
+
+// `labels` (0: none) through `map` (indexed by label).
+template <typename Vector>
+Vector mapped(Vector labels, const std::vector<std::uint32_t>& map) {
+  for (auto& label : labels) label = map[label];
+  return labels;
+}
+
+// The parts renumbered object by object (objects 1..K; a part of object 0 is
+// dropped): map[old part label] = new label, and the objects' offsets.
+std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> parts_by_object(
+    const std::vector<std::uint32_t>& object_of_part, std::uint32_t objects) {
+  std::vector<std::uint32_t> order(object_of_part.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return object_of_part[a] < object_of_part[b]; });
+  std::vector<std::uint32_t> map(object_of_part.size() + 1, 0), offsets(std::size_t{objects} + 1, 0);
+  std::uint32_t next = 0;
+  for (const std::uint32_t part : order) {
+    if (object_of_part[part] == 0) continue;
+    map[part + 1] = ++next;
+    offsets[object_of_part[part]] = next;
+  }
+  for (std::uint32_t k = 1; k <= objects; ++k) offsets[k] = std::max(offsets[k], offsets[k - 1]);
+  return {std::move(map), std::move(offsets)};
 }
 
 // min_object_points applies to objects; parts keep every piece of their object.
@@ -138,9 +170,11 @@ void SceneSegmenter::run_stage(Stage stage, SceneWork& w) const {
 
 // Stage 9 (Fig. 5 C): the objects of fewer than min_object_points points
 // dropped, then every object segmented on its own with the part-level config,
-// in the binning its points had at the object level.
+// in the binning its points had at the object level. With objects_from_parts:
+// group_objects.
 void SceneSegmenter::partition_objects(SceneWork& w) const {
   const StageTimer timer(w.objects.result.times, Stage::parts);
+  if (config_.objects.grouping.objects_from_parts) return group_objects(w);
   drop_small_objects(w.objects, config_.objects.filter.min_object_points);
   if (!config_.parts) return;
   LccpConfig config = *config_.parts;
@@ -156,6 +190,25 @@ void SceneSegmenter::partition_objects(SceneWork& w) const {
   });
 }
 
+// Stage 9 with objects_from_parts: the first level's segments are the parts;
+// the objects they group into (group_parts) take over the work's labels, the
+// objects of fewer than min_object_points points dropped, and the parts keep
+// theirs in w.grouped, renumbered object by object.
+void SceneSegmenter::group_objects(SceneWork& w) const {
+  SegmentationWork& first = w.objects;
+  std::vector<std::uint32_t> object = group_parts(first, config_.objects);
+  object.insert(object.begin(), 0u);  // indexed by part label
+  const Labels part_labels = std::exchange(first.result.labels, mapped(first.result.labels, object));
+  const std::vector<std::uint32_t> part_supervoxels =
+      std::exchange(first.segment_of_supervoxel, mapped(first.segment_of_supervoxel, object));
+  first.result.segment_count = object.size() > 1 ? *std::max_element(object.begin(), object.end()) : 0;
+  const std::vector<std::uint32_t> renamed = drop_small_objects(first, config_.objects.filter.min_object_points);
+  object = mapped(std::move(object), renamed);
+  object.erase(object.begin());
+  auto [map, offsets] = parts_by_object(object, first.result.segment_count);
+  w.grouped = GroupedParts{mapped(part_labels, map), mapped(part_supervoxels, map), std::move(offsets)};
+}
+
 // Stage 10: the geometry of every object and of its parts, ids still dense labels.
 void SceneSegmenter::describe(SceneWork& w) const {
   const StageTimer timer(w.objects.result.times, Stage::geometry);
@@ -167,33 +220,41 @@ void SceneSegmenter::describe(SceneWork& w) const {
     w.segments[k].object = std::move(objects[k]);
     if (k < w.parts.size()) w.segments[k].parts = describe_segments(w.parts[k]->work, plane);
   });
+  if (!w.grouped) return;
+  const GroupedParts& g = *w.grouped;
+  std::vector<SegmentGeometry> parts = describe_segments(w.objects, {g.labels, g.supervoxels, g.offsets.back()}, plane);
+  for (std::size_t k = 0; k < w.segments.size(); ++k) {
+    w.segments[k].parts.assign(std::make_move_iterator(parts.begin() + g.offsets[k]),
+                               std::make_move_iterator(parts.begin() + g.offsets[k + 1]));
+  }
 }
 
 // Stage 11: ids matched to the previous frame's; labels and geometry renamed to them.
 void SceneSegmenter::assign_ids(SceneWork& w, SegmentTracker& tracker) const {
   const StageTimer timer(w.objects.result.times, Stage::ids);
-  const std::vector<std::uint32_t> offsets = part_offsets(w.parts);
-  const Labels parts = config_.parts ? dense_part_labels(w, offsets) : Labels{};
+  const bool two = config_.two_levels();
+  const std::vector<std::uint32_t> offsets = w.grouped ? w.grouped->offsets : part_offsets(w.parts);
+  const Labels parts = w.grouped ? std::move(w.grouped->labels) : config_.parts ? dense_part_labels(w, offsets) : Labels{};
   const SegmentationResult& level1 = w.objects.result;
   TrackedIds ids = tracker.update({w.objects.cloud.points, &level1.labels, level1.segment_count,
-                                   config_.parts ? &parts : nullptr, offsets.back()});
+                                   two ? &parts : nullptr, offsets.back()});
   SceneSegmentation& r = w.result;
   r.support_id = w.objects.support ? kSupportId : 0;
-  r.labels = to_ids(config_.parts ? parts : level1.labels, config_.parts ? ids.part_ids : ids.object_ids,
-                    w.objects, r.support_id);
-  if (config_.parts) r.objects = to_ids(level1.labels, ids.object_ids, w.objects, r.support_id);
+  r.labels = to_ids(two ? parts : level1.labels, two ? ids.part_ids : ids.object_ids, w.objects, r.support_id);
+  if (two) r.objects = to_ids(level1.labels, ids.object_ids, w.objects, r.support_id);
   for (std::size_t k = 0; k < w.segments.size(); ++k) {
     rename(w.segments[k].object, ids.object_ids, 0);
-    for (SegmentGeometry& part : w.segments[k].parts) rename(part, ids.part_ids, offsets[k]);
+    for (SegmentGeometry& part : w.segments[k].parts) rename(part, ids.part_ids, w.grouped ? 0 : offsets[k]);
   }
   r.segments = std::move(w.segments);
   r.support_plane = w.objects.support ? std::optional<Plane>(w.objects.support->plane) : std::nullopt;
+  r.support_noise_m = w.objects.support ? w.objects.support->noise_m : 0.0f;
   r.new_ids = std::move(ids.new_ids);
   r.gone_ids = std::move(ids.gone_ids);
   r.voxel_count = level1.voxel_count;
   r.supervoxel_count = level1.supervoxel_count;
   r.object_count = level1.segment_count;
-  r.segment_count = config_.parts ? offsets.back() : level1.segment_count;
+  r.segment_count = two ? offsets.back() : level1.segment_count;
 }
 
 }  // namespace lccp

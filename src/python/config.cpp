@@ -77,9 +77,9 @@ Live take a Config wherever they take a preset name, a YAML path or a dict.
       .def(py::init<>(), "The defaults: the paper's parameter set P1, one level.")
       .def("__str__", &describe_config, "One line per key: name, unit and value (parts.KEY for the second level).")
       .def("__repr__", [](const SceneConfig& config) {
-        return std::string("<lccp_stream.Config, ") + (config.parts ? "two levels" : "one level") + ">";
+        return std::string("<lccp_stream.Config, ") + (config.two_levels() ? "two levels" : "one level") + ">";
       })
-      .def_property_readonly("levels", [](const SceneConfig& config) { return config.parts ? 2 : 1; },
+      .def_property_readonly("levels", [](const SceneConfig& config) { return config.two_levels() ? 2 : 1; },
                              "1 (segments) or 2 (objects, then parts within each object).");
 
   module.def(

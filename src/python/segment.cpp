@@ -26,7 +26,7 @@ Live's Frame: labels (as above), objects (per point, uint32 object ids; None
 with one level), segments (per segment: the "objects" list of the per-frame
 JSON document, README: id, points, centroid, obb, principal_axes,
 principal_extents, mean_normal, grasp, adjacent, parts; vectors and axes as
-numpy float64 arrays) and support_plane ({"id", "normal", "d"} or None).
+numpy float64 arrays) and support_plane ({"id", "normal", "d", "noise_m"} or None).
 
 Raises ValueError for a bad array, config or cloud (with the library's
 one-line message). The GIL is released while the cloud is segmented.
@@ -60,7 +60,8 @@ segments: list of dicts, one per object (with its "parts"): the "objects"
     list of the per-frame JSON document (README schema); centroid, obb's
     center, axes and extents, principal_axes, principal_extents and
     mean_normal are numpy float64 arrays, (3,) or (3, 3) with one axis a row.
-support_plane: {"id": int, "normal": float64 (3,), "d": float} (n . p + d = 0)
+support_plane: {"id": int, "normal": float64 (3,), "d": float, "noise_m": float} (n . p + d = 0;
+    noise_m: the robust standard deviation of its inliers, metres)
     or None.
 )doc";
 

@@ -168,10 +168,11 @@ def test_config_forms_agree(tmp_path, source_dir, mosd_cloud):
 
 
 def test_config_objects(source_dir):
-    assert lccp_stream.presets() == ["objects", "p1", "p2", "paper", "robot"]
-    robot = lccp_stream.load_config("robot")
-    assert robot.levels == 2 and lccp_stream.load_config("p1").levels == 1
-    text = str(robot)
+    assert lccp_stream.presets() == ["objects", "p1", "p2", "paper-robot", "paper", "robot"]
+    robot, paper_robot = lccp_stream.load_config("robot"), lccp_stream.load_config("paper-robot")
+    assert robot.levels == 2 and paper_robot.levels == 2 and lccp_stream.load_config("p1").levels == 1
+    assert "objects_from_parts: true" in str(robot) and "parts.beta_thresh_deg" not in str(robot)
+    text = str(paper_robot)
     assert "beta_thresh_deg" in text and "parts.beta_thresh_deg" in text
     two_levels = lccp_stream.load_config({"support_plane": True, "parts": {"beta_thresh_deg": 12}})
     assert two_levels.levels == 2 and "12" in str(two_levels)

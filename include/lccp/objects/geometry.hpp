@@ -41,12 +41,23 @@ struct SegmentGeometry {
   std::vector<Neighbour> adjacent;  // ascending id
 };
 
-// The geometry of segments 1..K of a segmented cloud (work.result.labels,
-// K = work.result.segment_count), in label order. With a support plane the
-// box's third axis is the plane normal and the grasp compares the main axis
-// with it; without one the box follows the principal axes and "up" is the
-// sensor's -y. Needs the work's grid, normals, supervoxels, edges and
-// segment_of_supervoxel (all stages run).
+// Segments 1..count of a segmented cloud: per point and per supervoxel its
+// segment (0: none). The work's own (work.result.labels and
+// segment_of_supervoxel), or unions of them (objects grouped from parts).
+struct SegmentLabels {
+  const Labels& points;
+  const std::vector<std::uint32_t>& supervoxels;
+  std::uint32_t count = 0;
+};
+
+// The geometry of segments 1..K of a segmented cloud, in label order. With a
+// support plane the box's third axis is the plane normal and the grasp
+// compares the main axis with it; without one the box follows the principal
+// axes and "up" is the sensor's -y. Needs the work's grid, normals,
+// supervoxels and edges (all stages run).
+std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, const SegmentLabels& segments,
+                                               const std::optional<Plane>& support);
+// The work's own segments (work.result.labels, K = work.result.segment_count).
 std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, const std::optional<Plane>& support);
 
 }  // namespace lccp

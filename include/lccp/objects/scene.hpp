@@ -3,7 +3,9 @@
 // plane removed (stage 0), objects segmented (stages 1-8, Fig. 5 B), each object
 // partitioned into parts (stage 9, Fig. 5 C), the geometry of every object and
 // part (stage 10), and ids matched to the previous frame's (stage 11). With a
-// one-level config the segments are the objects and stage 9 does nothing.
+// one-level config the segments are the objects and stage 9 does nothing; with
+// objects_from_parts (GroupingConfig) stages 1-8 find the parts and stage 9
+// groups them into objects.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -31,6 +33,7 @@ struct SceneSegmentation {
   Labels objects;  // per point: the id of its object, the support's, or 0; empty with one level
   std::optional<Plane> support_plane;
   std::uint32_t support_id = 0;       // 0: no support plane removed
+  float support_noise_m = 0;          // the support plane's noise (SupportPlane::noise_m)
   std::vector<ObjectSegments> segments;  // objects in the first level's order (largest first)
   std::vector<std::uint32_t> new_ids;    // first seen in this frame, ascending
   std::vector<std::uint32_t> gone_ids;   // in the previous frame, not in this one, ascending
@@ -49,13 +52,23 @@ struct ObjectParts {
   SegmentationWork work;              // over `cloud`
 };
 
+// The parts of a config that groups objects from parts (GroupingConfig): the
+// first level's segments, renumbered object by object (object k's parts are
+// offsets[k - 1] + 1 .. offsets[k]), per point and per supervoxel; 0: none.
+struct GroupedParts {
+  Labels labels;
+  std::vector<std::uint32_t> supervoxels;
+  std::vector<std::uint32_t> offsets;  // objects + 1 entries, offsets[0] = 0
+};
+
 // One frame on its way through the stages of kStages. Every stage adds its
 // time to objects.result.times (the frame's one record of stage times).
 struct SceneWork {
   explicit SceneWork(const CloudView& cloud) : objects(cloud) {}
 
   SegmentationWork objects;                          // stages 0-8
-  std::vector<std::unique_ptr<ObjectParts>> parts;   // stage 9: one per object
+  std::vector<std::unique_ptr<ObjectParts>> parts;   // stage 9: one per object (objects, then parts)
+  std::optional<GroupedParts> grouped;               // stage 9 (objects from parts): `objects` then holds the objects
   std::vector<ObjectSegments> segments;              // stage 10, by dense labels
   SceneSegmentation result;                          // stage 11 (labels, ids)
 
@@ -94,6 +107,7 @@ class SceneSegmenter {
 
  private:
   void partition_objects(SceneWork& work) const;
+  void group_objects(SceneWork& work) const;
   void describe(SceneWork& work) const;
 
   SceneConfig config_;

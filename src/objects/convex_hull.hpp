@@ -1,0 +1,50 @@
+#pragma once
+// Convex hulls in a plane's coordinates, for the footprints of segments on the
+// support plane (geometry.cpp: boxes; grouping.cpp: what stands inside what).
+#include <algorithm>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace lccp::detail {
+
+// > 0 when o, a, b turn counter-clockwise.
+inline double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Andrew's monotone chain (A. M. Andrew, "Another efficient algorithm for convex
+// hulls in two dimensions", Inf. Process. Lett. 9(5), 1979): the hull vertices
+// counter-clockwise, without collinear ones; one or two points for degenerate sets.
+inline std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> p) {
+  const auto lexicographic = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
+  };
+  std::sort(p.begin(), p.end(), lexicographic);
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {  // lower hull
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {  // upper hull
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);  // the last point is the first
+  return hull;
+}
+
+// Whether q lies inside (or on) the counter-clockwise convex polygon `hull`;
+// never for a hull of fewer than three vertices.
+inline bool inside_hull(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& q) {
+  if (hull.size() < 3) return false;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    if (cross(hull[i], hull[(i + 1) % hull.size()], q) < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace lccp::detail

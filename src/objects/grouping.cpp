@@ -1,0 +1,306 @@
+// Objects as unions of parts (GroupingConfig, config.hpp): each part's height
+// span above the support plane from its points, its footprint (the convex hull
+// of its supervoxels' centroids in the plane), and its junctions with the
+// other parts from the supervoxel adjacency graph; then every part that
+// neither stands on the support nor rests on an upward face, and every part
+// inside a neighbour's footprint below its top, joins the neighbour it shares
+// most edges with.
+#include "lccp/objects/grouping.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <map>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "convex_hull.hpp"
+#include "occlusion.hpp"
+#include "lccp/core/union_find.hpp"
+
+namespace lccp {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+// One part on the support: heights above the plane, points, the centroid of
+// its points and the hull of its supervoxels in plane coordinates.
+struct PartShape {
+  double bottom = std::numeric_limits<double>::infinity();
+  double top = -std::numeric_limits<double>::infinity();
+  std::uint64_t points = 0;
+  Vec3 sum = Vec3::Zero();
+  std::vector<Vec2> hull;
+};
+
+// Plane coordinates: a right-handed frame (e1, e2, n) on the plane normal n.
+struct InPlane {
+  Vec3 e1, e2;
+  explicit InPlane(const Vec3& n) {
+    Eigen::Index least = 0;
+    n.cwiseAbs().minCoeff(&least);
+    e1 = n.cross(Vec3::Unit(least)).normalized();
+    e2 = n.cross(e1);
+  }
+  Vec2 operator()(const Vec3& p) const { return {p.dot(e1), p.dot(e2)}; }
+};
+
+std::vector<PartShape> part_shapes(const SegmentationWork& w, const Plane& plane) {
+  const std::uint32_t count = w.result.segment_count;
+  std::vector<PartShape> shapes(count);
+  for (std::size_t i = 0; i < w.result.labels.size(); ++i) {
+    const std::uint32_t label = w.result.labels[i];
+    if (label == 0) continue;
+    PartShape& s = shapes[label - 1];
+    const double height = plane.distance(w.cloud.points[i]);
+    s.bottom = std::min(s.bottom, height), s.top = std::max(s.top, height);
+    s.points += 1, s.sum += w.cloud.points[i].cast<double>();
+  }
+  const InPlane frame(plane.normal.cast<double>());
+  std::vector<std::vector<Vec2>> members(count);
+  for (std::size_t v = 0; v < w.segment_of_supervoxel.size(); ++v) {
+    const std::uint32_t label = w.segment_of_supervoxel[v];
+    if (label != 0) members[label - 1].push_back(frame(w.supervoxels.centroids[v].cast<double>()));
+  }
+  for (std::uint32_t k = 0; k < count; ++k) shapes[k].hull = detail::convex_hull(std::move(members[k]));
+  return shapes;
+}
+
+// Where parts p < q meet: supervoxel edges between them, of those the edges
+// whose supervoxel on p's side (q's side) faces up, and the sum of the heights
+// of the supervoxels on each side (one per edge).
+struct Junction {
+  std::uint32_t p = 0, q = 0;
+  std::uint32_t edges = 0;
+  std::array<std::uint32_t, 2> upward{0, 0};  // [0]: p's side faces up, [1]: q's side
+  std::array<double, 2> height{0, 0};         // [0]: p's side, [1]: q's side
+
+  void add(const Junction& e) {
+    edges += e.edges;
+    for (int side = 0; side < 2; ++side) upward[side] += e.upward[side], height[side] += e.height[side];
+  }
+};
+
+std::vector<Junction> junctions(const SegmentationWork& w, const Plane& plane, double cos_upward) {
+  const auto upward = [&](std::uint32_t s) { return w.supervoxels.normals[s].dot(plane.normal) >= cos_upward; };
+  std::vector<Junction> edges;
+  for (const Edge& e : w.edges) {
+    std::uint32_t a = e.a, b = e.b;
+    if (w.segment_of_supervoxel[a] > w.segment_of_supervoxel[b]) std::swap(a, b);
+    const std::uint32_t p = w.segment_of_supervoxel[a], q = w.segment_of_supervoxel[b];
+    if (p == 0 || p == q) continue;
+    const auto height = [&](std::uint32_t s) { return double(plane.distance(w.supervoxels.centroids[s])); };
+    edges.push_back({p, q, 1, {upward(a) ? 1u : 0u, upward(b) ? 1u : 0u}, {height(a), height(b)}});
+  }
+  std::sort(edges.begin(), edges.end(), [](const Junction& x, const Junction& y) {
+    return x.p != y.p ? x.p < y.p : x.q < y.q;
+  });
+  std::vector<Junction> merged;
+  for (const Junction& e : edges) {
+    if (merged.empty() || merged.back().p != e.p || merged.back().q != e.q) {
+      merged.push_back(e);
+    } else {
+      merged.back().add(e);
+    }
+  }
+  return merged;
+}
+
+// How a part meets the support: lying wholly within contact_m of the plane
+// (flat: a piece of the table its band left, since nothing thinner than a
+// standing object's foot can be told from it: no object), standing on it (its lowest
+// point within contact_m), or off it (resting on another part, or hanging).
+enum class Footing : std::uint8_t { flat, stands, off };
+
+Footing footing(const PartShape& part, const GroupingConfig& config) {
+  if (part.top <= config.contact_m) return Footing::flat;
+  return part.bottom <= config.contact_m ? Footing::stands : Footing::off;
+}
+
+// Whether every vertex of `hull` lies inside `outer`.
+bool inside(const std::vector<Vec2>& hull, const std::vector<Vec2>& outer) {
+  if (hull.empty()) return false;
+  for (const Vec2& vertex : hull) {
+    if (!detail::inside_hull(outer, vertex)) return false;
+  }
+  return true;
+}
+
+// One direction of a junction: `part` hangs off `other` when neither rests
+// on the other: on its upward face (most of the junction's supervoxels on
+// that side face up) or on its top (sits_on).
+struct Side {
+  std::uint32_t part = 0, other = 0, edges = 0;
+  bool hangs = false;
+  bool rests = false;  // part rests on other
+};
+
+// Whether a junction lies in the lowest third of `part` (`height`: the mean
+// height of its supervoxels there) and the highest third of `other`: part
+// sits on other's top even where other's top face is hidden or flush with
+// part's sides (stacked boxes seen edge on). A handle meets its body at both
+// of its ends, around its middle height, and low on the body: it never does.
+bool sits_on(const PartShape& part, double height, const PartShape& other, double other_height) {
+  return height <= part.bottom + (part.top - part.bottom) / 3 && other_height >= other.top - (other.top - other.bottom) / 3;
+}
+
+// Whether `part` rests on `other` across a junction: it meets it on other's
+// upward face or sits on its top (sits_on). A part standing on the support
+// rests on nothing else.
+bool rests_on(const PartShape& part, Footing feet, double height, const PartShape& other, double other_height,
+              bool upward_face) {
+  if (feet != Footing::off) return false;
+  return upward_face || sits_on(part, height, other, other_height);
+}
+
+std::vector<Side> sides_of(const std::vector<Junction>& all, const std::vector<PartShape>& shapes,
+                           const std::vector<Footing>& feet) {
+  std::vector<Side> sides;
+  for (const Junction& j : all) {  // ascending (p, q)
+    const std::uint32_t p = j.p - 1, q = j.q - 1;
+    const double hp = j.height[0] / j.edges, hq = j.height[1] / j.edges;
+    const bool p_rests = rests_on(shapes[p], feet[p], hp, shapes[q], hq, 2 * j.upward[1] >= j.edges);
+    const bool q_rests = rests_on(shapes[q], feet[q], hq, shapes[p], hp, 2 * j.upward[0] >= j.edges);
+    const bool hangs = !p_rests && !q_rests;  // where one rests on the other, neither hangs off it
+    sides.push_back({p, q, j.edges, hangs, p_rests});
+    sides.push_back({q, p, j.edges, hangs, q_rests});
+  }
+  return sides;
+}
+
+// The bodies objects are built on: parts that stand on the support, and
+// parts that rest on a body (a box on a box on the table), until no more do.
+// A part resting on a loose piece (one half of a handle on the other) is none.
+std::vector<std::uint8_t> anchors(const std::vector<Footing>& feet, const std::vector<Side>& sides) {
+  std::vector<std::uint8_t> anchor(feet.size(), 0);
+  for (std::size_t k = 0; k < feet.size(); ++k) anchor[k] = feet[k] == Footing::stands;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const Side& s : sides) {
+      if (s.rests && anchor[s.other] && !anchor[s.part]) anchor[s.part] = 1, grew = true;
+    }
+  }
+  return anchor;
+}
+
+// The other parts off the support that hang off each other form clusters
+// (the inside of a mug, seen in pieces); each cluster joins the body it hangs
+// off across most edges (ties: the smaller part). A cluster that hangs off no
+// body stays apart, part by part: two pieces that touch only each other give
+// no reason to be one object (objects whose feet another hides).
+void hang_clusters(ConcurrentUnionFind& sets, const std::vector<std::uint8_t>& anchor,
+                   const std::vector<Footing>& feet, const std::vector<Side>& sides) {
+  const auto loose = [&](std::uint32_t k) { return !anchor[k] && feet[k] == Footing::off; };
+  ConcurrentUnionFind clusters(static_cast<std::uint32_t>(feet.size()));
+  for (const Side& s : sides) {
+    if (s.hangs && loose(s.part) && loose(s.other)) clusters.unite(s.part, s.other);
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> edges;  // (cluster, body) -> edges
+  for (const Side& s : sides) {
+    if (s.hangs && loose(s.part) && anchor[s.other]) edges[{clusters.find(s.part), s.other}] += s.edges;
+  }
+  std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> best;  // cluster -> (edges, body)
+  for (const auto& [key, count] : edges) {
+    auto& b = best[key.first];
+    if (count > b.first) b = {count, key.second};
+  }
+  for (std::uint32_t k = 0; k < feet.size(); ++k) {
+    const auto found = loose(k) ? best.find(clusters.find(k)) : best.end();
+    if (found != best.end()) sets.unite(k, found->second.second);
+  }
+}
+
+// A part alone whose footprint lies inside the footprint of a neighbouring
+// object, not above its top, is that object's inside (a container's floor,
+// or its inner wall seen through the opening): it joins it, until no more do. An
+// object's footprint is the hull of its parts' hulls; joining a part inside
+// it changes neither that nor its top.
+void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shapes, const std::vector<Side>& sides,
+                  const GroupingConfig& config) {
+  const auto count = static_cast<std::uint32_t>(shapes.size());
+  std::vector<std::vector<Vec2>> corners(count);
+  std::vector<double> top(count, -std::numeric_limits<double>::infinity());
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const std::uint32_t root = sets.find(k);
+    corners[root].insert(corners[root].end(), shapes[k].hull.begin(), shapes[k].hull.end());
+    top[root] = std::max(top[root], shapes[k].top);
+  }
+  std::vector<std::vector<Vec2>> hulls(count);
+  for (std::uint32_t k = 0; k < count; ++k) hulls[k] = detail::convex_hull(std::move(corners[k]));
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (const Side& s : sides) {
+      if (sets.find(s.part) != s.part) continue;  // one part alone
+      const std::uint32_t object = sets.find(s.other);
+      if (object == s.part || shapes[s.part].top > top[object] + config.contact_m) continue;
+      if (!inside(shapes[s.part].hull, hulls[object])) continue;
+      sets.unite(s.part, object);
+      const std::uint32_t root = sets.find(object);
+      if (root != object) hulls[root] = hulls[object], top[root] = top[object];
+      joined = true;
+    }
+  }
+}
+
+// Objects: the sets, numbered by decreasing points (ties: the set whose
+// smallest part is smaller first); a flat part alone is no object (0).
+std::vector<std::uint32_t> number_objects(ConcurrentUnionFind& sets, const std::vector<PartShape>& shapes,
+                                          const std::vector<Footing>& feet) {
+  const auto count = static_cast<std::uint32_t>(shapes.size());
+  std::vector<std::uint64_t> points(count, 0), members(count, 0);
+  for (std::uint32_t k = 0; k < count; ++k) points[sets.find(k)] += shapes[k].points, members[sets.find(k)] += 1;
+  std::vector<std::uint32_t> roots;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    if (sets.find(k) == k && !(members[k] == 1 && feet[k] == Footing::flat)) roots.push_back(k);
+  }
+  std::stable_sort(roots.begin(), roots.end(), [&](std::uint32_t a, std::uint32_t b) { return points[a] > points[b]; });
+  std::vector<std::uint32_t> number(count, 0), object(count);
+  for (std::size_t r = 0; r < roots.size(); ++r) number[roots[r]] = static_cast<std::uint32_t>(r + 1);
+  for (std::uint32_t k = 0; k < count; ++k) object[k] = number[sets.find(k)];
+  return object;
+}
+
+}  // namespace
+
+// Parts a nearer object splits (detail::hidden_continuations), among those
+// that are not flat, are one.
+void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const LccpConfig& config,
+                 const std::vector<Footing>& feet, const std::vector<Side>& sides) {
+  if (config.grouping.occluded_gap_m <= 0.0f) return;
+  std::vector<std::uint8_t> eligible(feet.size());
+  for (std::size_t k = 0; k < feet.size(); ++k) eligible[k] = feet[k] != Footing::flat;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent;
+  for (const Side& s : sides) {
+    if (s.part < s.other) adjacent.emplace_back(s.part, s.other);
+  }
+  std::sort(adjacent.begin(), adjacent.end());
+  for (const auto& [p, q] : detail::hidden_continuations(w, config, eligible, adjacent)) sets.unite(p, q);
+}
+
+std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
+  const GroupingConfig& config = lccp.grouping;
+  const std::uint32_t count = w.result.segment_count;
+  std::vector<std::uint32_t> own(count);
+  std::iota(own.begin(), own.end(), 1u);
+  if (!w.support || count == 0) return own;
+  const Plane& plane = w.support->plane;
+  const double cos_upward = std::cos(config.upward_max_tilt_deg * std::numbers::pi / 180.0);
+  const std::vector<PartShape> shapes = part_shapes(w, plane);
+  std::vector<Footing> feet(count);
+  for (std::uint32_t k = 0; k < count; ++k) feet[k] = footing(shapes[k], config);
+  const std::vector<Side> sides = sides_of(junctions(w, plane, cos_upward), shapes, feet);
+  ConcurrentUnionFind sets(count);
+  join_hidden(sets, w, lccp, feet, sides);
+  hang_clusters(sets, anchors(feet, sides), feet, sides);
+  join_insides(sets, shapes, sides, config);
+  return number_objects(sets, shapes, feet);
+}
+
+}  // namespace lccp

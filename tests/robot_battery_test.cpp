@@ -1,0 +1,387 @@
+// The robot battery: objects a robot meets on a table (robot_scenes.hpp: two
+// boxes apart, two boxes touching, a box on a box, an upright mug with its
+// handle, a pan with a long handle, a can on its side twice), each from the
+// eight contact views (elevation 45 and 30 deg, organized and unorganized,
+// noise-free and Kinect-noisy), through the robot preset (config/robot.yaml).
+// Per case, the acceptance criteria of the robot issue:
+//   - the support plane found, its normal within 0.5 deg of the true one;
+//   - as many objects as there are, the true objects one-to-one on predicted
+//     ones (each true object: the object id holding most of its points);
+//   - each matched object's centroid within 2 mm (noise-free) / 10 mm (noise)
+//     of the centroid of the true object's points in the cloud;
+//   - its box's extents within 5 mm / 10 mm of the true object's: the
+//     minimum-area rectangle of its whole solids' footprint (hidden faces too),
+//     longer side first, and its own height (from its lowest point: an object
+//     resting on another is boxed from its own bottom);
+//   - its box's axes within 2 deg: the third the plane normal, the first the
+//     footprint rectangle's longer side (as a line);
+//   - every reported object's centroid inside its own box (grown by 1 mm).
+// Every measured figure is printed ("[robot]" lines) so that it can be quoted.
+// The cases where they are not met yet are listed in not_met_yet(): checked
+// and printed, not failed (perf/RESULTS.md, issue 33).
+#include <gtest/gtest-spi.h>
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lccp/io/config_file.hpp"
+#include "lccp/objects/scene.hpp"
+#include "robot_scenes.hpp"
+
+namespace lccp {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPlaneAngleDeg = 0.5, kAxisAngleDeg = 2.0, kBoxGrowthM = 0.001;
+// Every part of every scene shows at least this many points in every view, so
+// that a lost object is the segmentation's doing, not the view's.
+constexpr std::size_t kMinPartPoints = 100;
+
+struct Tolerances {
+  double centroid_m = 0, extent_m = 0;
+};
+
+Tolerances tolerances(const test::ContactView& view) {
+  return view.noisy ? Tolerances{0.010, 0.010} : Tolerances{0.002, 0.005};
+}
+
+const SceneSegmenter& robot_segmenter() {
+  static const SceneSegmenter segmenter(load_config(fs::path(LCCP_CONFIG_DIR) / "robot.yaml"));
+  return segmenter;
+}
+
+// A ground-truth label of the true object `object` (n * 10): any of its parts n * 10 + k.
+bool of_object(std::uint32_t label, std::uint32_t object) { return label >= 10 && label / 10 * 10 == object; }
+
+// A world direction in the camera frame (the cloud's).
+Eigen::Vector3d in_camera(const test::ContactScene& scene, const Eigen::Vector3d& world) {
+  return scene.camera_from_world.R * world;
+}
+
+double line_angle_deg(const Eigen::Vector3f& a, const Eigen::Vector3d& b) {
+  return std::min(test::angle_deg(a, b), test::angle_deg(a, Eigen::Vector3d(-b)));
+}
+
+// The centroid of the true object's points in the cloud, all its parts together.
+Eigen::Vector3d visible_centroid(const test::ContactScene& scene, std::uint32_t object) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double n = 0;
+  for (std::size_t i = 0; i < scene.truth.size(); ++i) {
+    if (of_object(scene.truth[i], object)) sum += scene.cloud.points[i].cast<double>(), n += 1;
+  }
+  return sum / n;
+}
+
+// Not asserted, printed to tell a hidden extent from a wrong one: the
+// minimum-area rectangle (0.25 deg steps) of the true object's visible points
+// in the plane, and their top above it.
+Eigen::Vector3d visible_extents(const test::ContactScene& scene, std::uint32_t object) {
+  std::vector<Eigen::Vector3d> world;
+  const test::Pose& pose = scene.camera_from_world;
+  for (std::size_t i = 0; i < scene.truth.size(); ++i) {
+    if (of_object(scene.truth[i], object)) {
+      world.push_back(pose.R.transpose() * (scene.cloud.points[i].cast<double>() - pose.t));
+    }
+  }
+  Eigen::Vector3d best(0, 0, 0);
+  double top = 0;
+  for (const Eigen::Vector3d& p : world) top = std::max(top, p.z());
+  for (double t_deg = 0; t_deg < 90; t_deg += 0.25) {
+    const double t = test::deg2rad(t_deg);
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = Eigen::Vector2d::Constant(-1e9);
+    for (const Eigen::Vector3d& p : world) {
+      const Eigen::Vector2d q(std::cos(t) * p.x() + std::sin(t) * p.y(), -std::sin(t) * p.x() + std::cos(t) * p.y());
+      lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+    }
+    const Eigen::Vector2d sides = hi - lo;
+    if (best.x() == 0 || sides.prod() < best.x() * best.y()) best = {sides.maxCoeff(), sides.minCoeff(), top};
+  }
+  return best;
+}
+
+// Every part is in view (else the case tests the view, not the segmentation).
+void expect_every_part_seen(const test::RobotCase& c, const test::ContactScene& scene) {
+  std::printf("[robot] %s: points", c.name().c_str());
+  for (const test::ContactSolid& s : c.layout.solids) {
+    const auto n = static_cast<std::size_t>(std::count(scene.truth.begin(), scene.truth.end(), s.label));
+    std::printf(" %u: %zu", s.label, n);
+    EXPECT_GE(n, kMinPartPoints) << "part " << s.label << " hardly in view";
+  }
+  std::printf("\n");
+}
+
+void expect_support_plane(const SceneSegmentation& seg, const test::ContactScene& scene) {
+  ASSERT_TRUE(seg.support_plane.has_value()) << "no support plane";
+  const double angle = test::angle_deg(seg.support_plane->normal, in_camera(scene, Eigen::Vector3d::UnitZ()));
+  std::printf("[robot]   support normal off by %.3f deg\n", angle);
+  EXPECT_LT(angle, kPlaneAngleDeg) << "support plane normal";
+}
+
+// The id (of an object, the support, or 0) holding most points of the true
+// object (ties: the smaller id).
+std::uint32_t id_holding_most(const SceneSegmentation& seg, const test::ContactScene& scene, std::uint32_t object) {
+  const Labels& ids = seg.objects.empty() ? seg.labels : seg.objects;  // one level: the segments are the objects
+  std::map<std::uint32_t, std::size_t> votes;
+  for (std::size_t i = 0; i < scene.truth.size(); ++i) {
+    if (of_object(scene.truth[i], object)) ++votes[ids[i]];
+  }
+  std::uint32_t best = 0;
+  std::size_t most = 0;
+  for (const auto& [id, n] : votes) {
+    if (n > most) best = id, most = n;
+  }
+  return best;
+}
+
+const ObjectSegments* reported_object(const SceneSegmentation& seg, std::uint32_t id) {
+  for (const ObjectSegments& o : seg.segments) {
+    if (o.object.id == id) return &o;
+  }
+  return nullptr;
+}
+
+// The object count, and each true object's predicted object (nullptr: mostly
+// in the support or in none); the true objects must land on different ones.
+std::vector<const ObjectSegments*> match_objects(const SceneSegmentation& seg, const test::ContactScene& scene,
+                                                 const std::vector<test::ObjectTruth>& truths) {
+  std::printf("[robot]   objects %u (true %zu)\n", seg.object_count, truths.size());
+  EXPECT_EQ(seg.object_count, truths.size()) << "object count";
+  std::vector<const ObjectSegments*> matched;
+  std::map<std::uint32_t, std::uint32_t> truth_of_id;
+  for (const test::ObjectTruth& t : truths) {
+    const std::uint32_t id = id_holding_most(seg, scene, t.object);
+    const ObjectSegments* o = id == seg.support_id ? nullptr : reported_object(seg, id);
+    EXPECT_NE(o, nullptr) << "true object " << t.object << " mostly in " << (id == 0 ? "no segment" : "the support");
+    const auto [it, fresh] = truth_of_id.emplace(id, t.object);
+    EXPECT_TRUE(fresh || o == nullptr) << "true objects " << it->second << " and " << t.object
+                                       << " both mostly in object " << id;
+    matched.push_back(o);
+  }
+  return matched;
+}
+
+// The box's first axis against the footprint rectangle's longer side: the
+// smallest angle to any of the minimum rectangles' (mirror images share it).
+double first_axis_angle(const OrientedBox& box, const test::ObjectTruth& t, const test::ContactScene& scene) {
+  double angle = 180;
+  for (const Eigen::Vector3d& side : t.longer_sides) {
+    angle = std::min(angle, line_angle_deg(box.axes.col(0), in_camera(scene, side)));
+  }
+  return angle;
+}
+
+void expect_axes(const OrientedBox& box, const test::ObjectTruth& t, const test::ContactScene& scene) {
+  const Eigen::Vector3f third = box.axes.col(2);
+  const double up = test::angle_deg(third, in_camera(scene, Eigen::Vector3d::UnitZ()));
+  std::printf("[robot]     axis 2 off the plane normal by %.2f deg", up);
+  EXPECT_LT(up, kAxisAngleDeg) << "object " << t.object << ": box axis 2 against the plane normal";
+  // A footprint whose sides are less than 10 % apart (round or square) has no
+  // meaningful longer side: the first axis may lie anywhere in the plane.
+  if (!t.direction_defined()) {
+    std::printf("; axis 0 not checked (footprint sides %.1f, %.1f mm)\n", 1000 * t.extents.x(), 1000 * t.extents.y());
+    return;
+  }
+  const double along = first_axis_angle(box, t, scene);
+  std::printf("; axis 0 off the longer side by %.2f deg\n", along);
+  EXPECT_LT(along, kAxisAngleDeg) << "object " << t.object << ": box axis 0 against the footprint's longer side";
+}
+
+void expect_object(const SegmentGeometry& g, const test::ObjectTruth& t, const test::ContactScene& scene,
+                   const Tolerances& tol) {
+  const double centroid_error = (g.centroid.cast<double>() - visible_centroid(scene, t.object)).norm();
+  const Eigen::Vector3d extent_error = (g.obb.extents.cast<double>() - t.extents).cwiseAbs();
+  const Eigen::Vector3d mm = 1000 * g.obb.extents.cast<double>(), true_mm = 1000 * t.extents;
+  const Eigen::Vector3d off_mm = 1000 * extent_error;
+  std::printf("[robot]   object %u -> id %u (%llu points): centroid off by %.2f mm; extents %.1f %.1f %.1f mm, "
+              "true %.1f %.1f %.1f, off by %.1f %.1f %.1f\n",
+              t.object, g.id, static_cast<unsigned long long>(g.points), 1000 * centroid_error, mm.x(), mm.y(), mm.z(),
+              true_mm.x(), true_mm.y(), true_mm.z(), off_mm.x(), off_mm.y(), off_mm.z());
+  const Eigen::Vector3d seen = visible_extents(scene, t.object);
+  std::printf("[robot]     its visible points alone span %.1f %.1f mm, top %.1f mm", 1000 * seen.x(), 1000 * seen.y(),
+              1000 * seen.z());
+  if (t.lowest > 1e-9) std::printf("; it rests %.1f mm above the plane", 1000 * t.lowest);
+  std::printf("\n");
+  EXPECT_LT(centroid_error, tol.centroid_m) << "object " << t.object << ": centroid";
+  const char* const axis_name[3] = {"longer footprint side", "shorter footprint side", "height"};
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(extent_error[a], tol.extent_m) << "object " << t.object << ": extent along the " << axis_name[a]
+                                             << ", " << g.obb.extents[a] << " m against " << t.extents[a];
+  }
+  expect_axes(g.obb, t, scene);
+}
+
+// Every reported object's centroid lies inside its own box, grown by 1 mm.
+void expect_centroids_in_their_boxes(const SceneSegmentation& seg) {
+  for (const ObjectSegments& o : seg.segments) {
+    const OrientedBox& box = o.object.obb;
+    const Eigen::Vector3f local = box.axes.transpose() * (o.object.centroid - box.center);
+    const Eigen::Vector3f outside = local.cwiseAbs() - box.extents / 2;
+    EXPECT_LE(outside.maxCoeff(), kBoxGrowthM) << "object id " << o.object.id << ": centroid "
+                                               << 1000 * outside.maxCoeff() << " mm outside its box";
+  }
+}
+
+// The cases on which the robot issue's criteria are not met yet (perf/RESULTS.md,
+// issue 33, says by how much and why): their checks run and print what fails,
+// as "[robot] NOT MET" lines, without failing the suite; every other case must
+// meet them all. A case listed here that meets them fails, so that the list
+// stays exact.
+const std::set<std::string>& not_met_yet() {
+  static const std::set<std::string> names{
+    "box on a box, yawed 15 deg, elevation 30 organized noise-free",
+    "box on a box, yawed 15 deg, elevation 30 unorganized noise-free",
+    "box on a box, yawed 15 deg, elevation 45 organized noise-free",
+    "box on a box, yawed 15 deg, elevation 45 unorganized noise-free",
+    "boxes face to face 6 cm, A 10x12 B 8x9, elevation 30 organized noise-free",
+    "boxes face to face 6 cm, A 10x12 B 8x9, elevation 30 unorganized noise-free",
+    "can on its side r 3.3 cm, an end in view, elevation 30 organized kinect noise",
+    "can on its side r 3.3 cm, an end in view, elevation 30 unorganized kinect noise",
+    "can on its side r 3.3 cm, ends edge-on, elevation 30 organized kinect noise",
+    "can on its side r 3.3 cm, ends edge-on, elevation 30 organized noise-free",
+    "can on its side r 3.3 cm, ends edge-on, elevation 30 unorganized kinect noise",
+    "can on its side r 3.3 cm, ends edge-on, elevation 30 unorganized noise-free",
+    "can on its side r 3.3 cm, ends edge-on, elevation 45 organized kinect noise",
+    "can on its side r 3.3 cm, ends edge-on, elevation 45 organized noise-free",
+    "can on its side r 3.3 cm, ends edge-on, elevation 45 unorganized kinect noise",
+    "can on its side r 3.3 cm, ends edge-on, elevation 45 unorganized noise-free",
+    "mug upright, handle toward +x, elevation 30 organized kinect noise",
+    "mug upright, handle toward +x, elevation 30 organized noise-free",
+    "mug upright, handle toward +x, elevation 30 unorganized kinect noise",
+    "mug upright, handle toward +x, elevation 30 unorganized noise-free",
+    "mug upright, handle toward +x, elevation 45 organized kinect noise",
+    "mug upright, handle toward +x, elevation 45 unorganized kinect noise",
+    "pan with a long handle toward +x, elevation 30 organized kinect noise",
+    "pan with a long handle toward +x, elevation 30 organized noise-free",
+    "pan with a long handle toward +x, elevation 30 unorganized kinect noise",
+    "pan with a long handle toward +x, elevation 30 unorganized noise-free",
+    "pan with a long handle toward +x, elevation 45 organized kinect noise",
+    "pan with a long handle toward +x, elevation 45 organized noise-free",
+    "pan with a long handle toward +x, elevation 45 unorganized kinect noise",
+    "pan with a long handle toward +x, elevation 45 unorganized noise-free",
+  };
+  return names;
+}
+
+void check_case(const test::RobotCase& c) {
+  const test::ContactScene scene = test::contact_scene(c.layout, c.view);
+  expect_every_part_seen(c, scene);
+  const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
+  expect_support_plane(seg, scene);  // a missing plane fails here; the truth below does not need it
+  const std::vector<test::ObjectTruth> truths = test::object_truths(c.layout);
+  const std::vector<const ObjectSegments*> matched = match_objects(seg, scene, truths);
+  for (std::size_t k = 0; k < truths.size(); ++k) {
+    if (matched[k] != nullptr) expect_object(matched[k]->object, truths[k], scene, tolerances(c.view));
+  }
+  expect_centroids_in_their_boxes(seg);
+}
+
+class RobotScene : public testing::TestWithParam<test::RobotCase> {};
+
+TEST_P(RobotScene, MeetsTheRobotIssuesCriteria) {
+  const test::RobotCase& c = GetParam();
+  SCOPED_TRACE(c.name());
+  if (!not_met_yet().contains(c.name())) return check_case(c);
+  testing::TestPartResultArray failures;
+  {
+    const testing::ScopedFakeTestPartResultReporter intercept(
+        testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
+    check_case(c);
+  }
+  for (int i = 0; i < failures.size(); ++i) {
+    std::string message = failures.GetTestPartResult(i).message();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::printf("[robot] NOT MET: %s\n", message.c_str());
+  }
+  EXPECT_GT(failures.size(), 0) << "every criterion is met now: drop the case from not_met_yet()";
+}
+
+std::string case_name(const testing::TestParamInfo<test::RobotCase>& info) {
+  std::string name;
+  for (const char ch : info.param.name()) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(RobotBattery, RobotScene, testing::ValuesIn(test::robot_cases()), case_name);
+
+// --- the truth itself, against hand computations ---------------------------------------
+
+// A box's footprint is the box: B of the first scene, 6 x 15 x 7 cm yawed by 30
+// deg, has its longer side (own y) at 120 deg; a can on its side at 30 deg is
+// 12 cm along its axis, 6.6 cm across and 6.6 cm high.
+TEST(RobotBatteryTruth, BoxesAndCansMeasureTheirOwnSize) {
+  const test::ObjectTruth b = test::object_truths(test::two_boxes_apart())[1];
+  EXPECT_NEAR((b.extents - Eigen::Vector3d(0.15, 0.06, 0.07)).norm(), 0, 1e-9);
+  ASSERT_EQ(b.longer_sides.size(), 1u);
+  const double c30 = std::cos(test::deg2rad(30)), s30 = std::sin(test::deg2rad(30));
+  EXPECT_LT(line_angle_deg(b.longer_sides[0].cast<float>(), {-s30, c30, 0}), 1e-3);
+  const test::ObjectTruth can = test::object_truths(test::can_lying(30))[0];
+  EXPECT_NEAR((can.extents - Eigen::Vector3d(0.12, 0.066, 0.066)).norm(), 0, 1e-9);
+  ASSERT_EQ(can.longer_sides.size(), 1u);
+  EXPECT_LT(line_angle_deg(can.longer_sides[0].cast<float>(), {c30, s30, 0}), 1e-3);
+  // Box B on box A: the truth's height is B's own, 6 cm, from A's top at 8 cm.
+  EXPECT_NEAR(test::object_truths(test::box_on_a_box())[1].extents.z(), 0.06, 1e-12);
+  EXPECT_NEAR(test::object_truths(test::box_on_a_box())[1].lowest, 0.08, 1e-12);
+}
+
+// A round body of radius R with a handle on one side: the minimum-area
+// rectangle is not the one along the handle. The handle's tip: the corners
+// (r, +-w) in plan, rounded by rho (a tube's radius). Turned by t, the side
+// along the handle, r cos t + w sin t + rho + R, shrinks, while the side across
+// stays 2 R until the tip passes the body, r sin t + w cos t + rho = R: the
+// minimum is there, at +t and at its mirror image -t.
+void expect_tilted_footprint(const test::ObjectTruth& t, double body_r, double reach, double half_width, double rho) {
+  const double phi = std::atan2(half_width, reach);  // r sin t + w cos t = hypot(r, w) sin(t + phi)
+  const double tilt = std::asin((body_r - rho) / std::hypot(reach, half_width)) - phi;
+  const double longer = reach * std::cos(tilt) + half_width * std::sin(tilt) + rho + body_r;
+  std::printf("[robot] truth: footprint %.1f x %.1f mm, its longer side at +-%.2f deg "
+              "(along the handle: %.1f x %.1f)\n",
+              1000 * t.extents.x(), 1000 * t.extents.y(), test::rad2deg(tilt), 1000 * (reach + rho + body_r),
+              2000 * body_r);
+  EXPECT_NEAR(t.extents.x(), longer, 1e-4);
+  EXPECT_NEAR(t.extents.y(), 2 * body_r, 1e-4);  // the 0.05 deg grid misses the kink by a hair
+  ASSERT_EQ(t.longer_sides.size(), 2u);
+  for (const double sign : {1.0, -1.0}) {
+    const Eigen::Vector3d side(std::cos(sign * tilt), std::sin(sign * tilt), 0);
+    double angle = 180;
+    for (const Eigen::Vector3d& s : t.longer_sides) angle = std::min(angle, line_angle_deg(s.cast<float>(), side));
+    EXPECT_LT(angle, 0.1) << "sign " << sign;
+  }
+}
+
+TEST(RobotBatteryTruth, AHandleTiltsTheMinimumRectangle) {
+  namespace s = synthetic::detail;
+  // The mug: the handle's centre line reaches x = 4.5 + 0.2 + 3 cm (scene_layout.cpp's
+  // kHandleCentreX plus the arc), a tube of 5 mm radius; 10 cm high.
+  const test::ObjectTruth mug = test::object_truths(test::mug_upright())[0];
+  expect_tilted_footprint(mug, s::kMugOuterRadiusM, s::kMugOuterRadiusM + 0.002 + s::kHandleArcRadiusM, 0,
+                          s::kHandleTubeRadiusM);
+  EXPECT_NEAR(mug.extents.z(), s::kMugHeightM, 1e-12);
+  // The pan: the handle's far corners at x = 28 cm, y = +-1.25 cm; the pan 5 cm high.
+  const test::ObjectTruth pan = test::object_truths(test::pan_with_a_long_handle())[0];
+  expect_tilted_footprint(pan, 0.10, 0.28, 0.0125, 0);
+  EXPECT_NEAR(pan.extents.z(), 0.05, 1e-12);
+}
+
+// The true plane in the camera frame: every noise-free plane point on it.
+TEST(RobotBatteryTruth, ThePlaneNormalInTheCameraFrame) {
+  const test::ContactScene scene = test::contact_scene(test::two_boxes_apart(), test::ContactView{});
+  const Eigen::Vector3d n = in_camera(scene, Eigen::Vector3d::UnitZ());
+  const double d = -n.dot(scene.camera_from_world.t);
+  EXPECT_GT(d, 0);  // the sensor above the plane: the normal points toward it
+  for (std::size_t i = 0; i < scene.truth.size(); ++i) {
+    if (scene.truth[i] == test::kContactPlaneLabel) {
+      ASSERT_NEAR(n.dot(scene.cloud.points[i].cast<double>()) + d, 0, 1e-5) << "point " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lccp
