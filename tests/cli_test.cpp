@@ -431,6 +431,27 @@ TEST_F(CliTest, EvalObjectLevelMergesTheGroundTruthsParts) {
       << text.out;
 }
 
+// A two-level result (robot) carries its objects in an `object` field beside
+// the parts' `label`: at object level eval scores that field. The parts split
+// the mug's handle off; its object holds the whole mug, so the objects score 1.
+TEST_F(CliTest, EvalObjectLevelScoresATwoLevelResultsObjectField) {
+  write_labels(work_ / "truth.pcd", kMugTruth);
+  PointCloud cloud;
+  cloud.width = static_cast<std::uint32_t>(kMugTruth.size());
+  for (std::size_t k = 0; k < kMugTruth.size(); ++k) cloud.points.emplace_back(0.01f * float(k), 0.0f, 1.0f);
+  const Labels objects = {1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3};
+  write_labelled_pcd(work_ / "pred.pcd", cloud, kHandleSplitOff, PcdEncoding::binary, &objects);
+  const std::string pred = (work_ / "pred.pcd").string(), truth = (work_ / "truth.pcd").string();
+  const RunResult by_objects = run({"eval", pred, truth, "--ignore", "0-9", "--object-level", "--json"});
+  expect_success(by_objects);
+  EXPECT_DOUBLE_EQ(json_number(by_objects.out, "wov"), 1.0) << by_objects.out;
+  // The parts, as before, against the truth's regions: the label field.
+  const RunResult by_parts = run({"eval", pred, truth, "--ignore", "0-9", "--json"});
+  expect_success(by_parts);
+  EXPECT_DOUBLE_EQ(json_number(by_parts.out, "wov"), 1.0) << by_parts.out;
+  EXPECT_DOUBLE_EQ(json_number(by_parts.out, "ground_truth_regions"), 3) << by_parts.out;
+}
+
 TEST_F(CliTest, EvalCountsObjectsLostIntoTheTable) {
   write_labels(work_ / "truth.pcd", kMugTruth);
   write_labels(work_ / "pred.pcd", kCanInTheTable);

@@ -1,7 +1,8 @@
 // lccp eval PRED GT: the paper's Appendix B scores of a labelled cloud, or the
 // mean over the frames of two folders (files paired by name), against the
 // ground truth's regions or (--object-level) its objects, and the objects lost
-// into the support.
+// into the support. At object level a prediction with an `object` field (a
+// two-level result: robot, paper-robot) is scored by its objects.
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -116,7 +117,9 @@ SegmentationScores score_files(const std::string& predicted_path, const std::str
                                const Scoring& scoring) {
   LabelledCloud predicted = read_cloud(predicted_path);
   LabelledCloud truth = read_cloud(truth_path);
-  const Labels predicted_labels = labels_of(predicted, predicted_path);
+  // At object level a two-level result is scored by its objects (its `object` field).
+  const Labels predicted_labels = scoring.object_level && predicted.objects ? std::move(*predicted.objects)
+                                                                            : labels_of(predicted, predicted_path);
   const Labels truth_labels = labels_of(truth, truth_path);
   if (predicted.cloud.size() != truth.cloud.size()) {
     throw Error(predicted_path + " has " + std::to_string(predicted.cloud.size()) + " points but " + truth_path +
@@ -224,7 +227,8 @@ Subcommand add_eval_command(CLI::App& cli) {
       ->required();
   command->add_option("--ignore", options->ignore, "ground-truth labels to leave out, e.g. 0-9 (mOSD's table)");
   command->add_flag("--object-level", options->object_level,
-                    "score objects: ground-truth parts n*10+k merged per object n, the support labels as one region");
+                    "score objects: ground-truth parts n*10+k merged per object n, the support labels as one region; "
+                    "a prediction with an object field (a two-level result) is scored by it");
   command->add_option("--support", options->support,
                       "ground-truth labels of the support (table), for objects lost into it and --object-level")
       ->capture_default_str();

@@ -88,6 +88,12 @@ const std::uint8_t* at(const Records& records, const RecordField* field, std::si
   return records.data.data() + field->offset + i * field->stride;
 }
 
+Labels read_labels(const Records& records, std::size_t n, const RecordField* field) {
+  Labels labels(n);
+  for (std::size_t i = 0; i < n; ++i) labels[i] = read_integer(at(records, field, i), field->type);
+  return labels;
+}
+
 std::vector<Eigen::Vector3f> read_vectors(const Records& records, std::size_t n,
                                           const std::vector<const RecordField*>& fields) {
   std::vector<Eigen::Vector3f> out(n);
@@ -133,6 +139,8 @@ CloudLayout find_cloud_fields(std::string_view name, const std::vector<RecordFie
   layout.color = find_color(name, fields, channels);
   layout.label = single(name, find_field(fields, "label"));
   if (layout.label && layout.label->type.kind == Kind::floating) fail(name, "field 'label' is not an integer type");
+  layout.object = single(name, find_field(fields, "object"));
+  if (layout.object && layout.object->type.kind == Kind::floating) fail(name, "field 'object' is not an integer type");
   return layout;
 }
 
@@ -148,12 +156,8 @@ LabelledCloud to_labelled_cloud(const Records& records, const CloudLayout& layou
   out.cloud.points = read_vectors(records, n, layout.xyz);
   out.cloud.colors = read_colors(records, n, layout.color);
   if (!layout.normals.empty()) out.cloud.normals = read_vectors(records, n, layout.normals);
-  if (layout.label) {
-    Labels labels(n);
-    for (std::size_t i = 0; i < n; ++i)
-      labels[i] = read_integer(at(records, layout.label, i), layout.label->type);
-    out.labels = std::move(labels);
-  }
+  if (layout.label) out.labels = read_labels(records, n, layout.label);
+  if (layout.object) out.objects = read_labels(records, n, layout.object);
   return out;
 }
 

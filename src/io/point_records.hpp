@@ -47,9 +47,11 @@ struct CloudLayout {
   std::vector<const RecordField*> normals;  // 3 or none
   std::vector<const RecordField*> color;    // none, 1 packed rgb/rgba, or red/green/blue
   const RecordField* label = nullptr;
+  const RecordField* object = nullptr;  // a two-level result's objects (our writers' `object` field)
 };
 
-// The names PCL's PCDReader exposes: x y z, rgb or rgba, normal_x/y/z, label.
+// The names PCL's PCDReader exposes: x y z, rgb or rgba, normal_x/y/z, label;
+// and `object`, which our writers add after `label`.
 // `channels` also accepts PLY's red/green/blue (uchar) for the colour.
 CloudLayout find_cloud_fields(std::string_view name, const std::vector<RecordField>& fields, bool channels);
 

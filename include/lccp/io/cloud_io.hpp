@@ -16,7 +16,8 @@ namespace lccp {
 
 struct LabelledCloud {
   PointCloud cloud;
-  std::optional<Labels> labels;  // the file's `label` field, if it has one
+  std::optional<Labels> labels;   // the file's `label` field, if it has one
+  std::optional<Labels> objects;  // its `object` field (a two-level result's objects), if it has one
 };
 
 // Upper bounds a file must respect to be read at all; larger files are
