@@ -14,8 +14,6 @@
 #include <numbers>
 #include <numeric>
 #include <map>
-#include <cstdio>
-#include <cstdlib>
 #include <utility>
 
 #include <Eigen/Geometry>
