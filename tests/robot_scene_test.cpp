@@ -109,10 +109,11 @@ void RobotFigures::add_handle(const FrameResult& result, const Labels& truth) {
   const std::uint32_t part = best_id(scene.labels, handle, scene.support_id);
   std::uint32_t part_object = 0;
   const SegmentGeometry* geometry = find_part(scene, part, part_object);
+  if (geometry == nullptr) return;  // most handle points in no segment
   const bool in_body = part == best_id(scene.labels, body, scene.support_id);
   const bool apart = part_object != best_id(scene.objects, mug, scene.support_id);
   handle_in_body += in_body, handle_apart += apart && !in_body;
-  if (geometry == nullptr || in_body || apart) return;
+  if (in_body || apart) return;
   ++handle_own_part;
   const double error = (geometry->centroid.cast<double>() - handle_sum / static_cast<double>(handle.size())).norm();
   worst_centroid_error_m = std::max(worst_centroid_error_m, error);
