@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <tuple>
@@ -48,19 +49,50 @@ SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
   return nodes;
 }
 
-// Segments as dense nodes with sizes (in supervoxels) and neighbour lists.
+// Segments as dense nodes with sizes (in supervoxels) and neighbour rows: one
+// row per node as the edges give it (with repeats), in compressed rows, so that
+// no node owns an allocation. A node merged into another hands it its rows: a
+// live node's neighbours are the rows on its chain (itself, then the nodes merged
+// into it, in merge order), which is what appending the lists would give.
 struct SegmentGraph {
+  static constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
+
   SegmentNodes nodes;
   std::vector<std::uint32_t> node_of_supervoxel;
   std::vector<std::uint32_t> size;
-  std::vector<std::vector<std::uint32_t>> neighbors;
+  CompressedRows neighbors;                // per node: its neighbour nodes (updated to live ones)
   std::vector<std::uint32_t> merged_into;  // node -> node it merged into (itself if alive)
+  std::vector<std::uint32_t> next_row;     // per node: the next node on its chain of rows (kEnd: none)
+  std::vector<std::uint32_t> last_row;     // per live node: the last node on its chain
 
   std::uint32_t alive(std::uint32_t node) {
     while (merged_into[node] != node) node = merged_into[node] = merged_into[merged_into[node]];
     return node;
   }
+  void merge(std::uint32_t node, std::uint32_t into) {
+    merged_into[node] = into;
+    size[into] += size[node];
+    next_row[last_row[into]] = node, last_row[into] = last_row[node];
+  }
 };
+
+// The nodes' neighbour rows in edge order: a count per node, then a fill.
+CompressedRows neighbor_rows(const std::vector<std::uint32_t>& node_of, const std::vector<Edge>& edges,
+                             std::size_t count) {
+  CompressedRows rows;
+  rows.offsets.assign(count + 1, 0);
+  for (const Edge& e : edges) {
+    if (node_of[e.a] != node_of[e.b]) ++rows.offsets[node_of[e.a] + 1], ++rows.offsets[node_of[e.b] + 1];
+  }
+  std::partial_sum(rows.offsets.begin(), rows.offsets.end(), rows.offsets.begin());
+  rows.items.resize(rows.offsets.back());
+  std::vector<std::uint32_t> filled(rows.offsets.begin(), rows.offsets.end() - 1);
+  for (const Edge& e : edges) {
+    const std::uint32_t a = node_of[e.a], b = node_of[e.b];
+    if (a != b) rows.items[filled[a]++] = b, rows.items[filled[b]++] = a;
+  }
+  return rows;
+}
 
 SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, const std::vector<Edge>& edges) {
   SegmentGraph g;
@@ -74,25 +106,23 @@ SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, c
       g.node_of_supervoxel[*sv] = node;
     }
   }
-  g.neighbors.resize(count);
-  for (const Edge& e : edges) {
-    const std::uint32_t a = g.node_of_supervoxel[e.a], b = g.node_of_supervoxel[e.b];
-    if (a == b) continue;
-    g.neighbors[a].push_back(b);
-    g.neighbors[b].push_back(a);
-  }
+  g.neighbors = neighbor_rows(g.node_of_supervoxel, edges, count);
   g.merged_into.resize(count);
   std::iota(g.merged_into.begin(), g.merged_into.end(), 0u);
+  g.next_row.assign(count, SegmentGraph::kEnd);
+  g.last_row = g.merged_into;
   return g;
 }
 
 // The largest live neighbour of a live node (ties: smaller segment id); none if isolated.
 std::optional<std::uint32_t> largest_neighbor(SegmentGraph& g, std::uint32_t node) {
   std::optional<std::uint32_t> best;
-  for (std::uint32_t& n : g.neighbors[node]) {
-    n = g.alive(n);
-    if (n == node) continue;
-    if (!best || std::tie(g.size[*best], n) < std::tie(g.size[n], *best)) best = n;
+  for (std::uint32_t row = node; row != SegmentGraph::kEnd; row = g.next_row[row]) {
+    for (std::uint32_t k = g.neighbors.offsets[row]; k < g.neighbors.offsets[row + 1]; ++k) {
+      const std::uint32_t n = g.neighbors.items[k] = g.alive(g.neighbors.items[k]);
+      if (n == node) continue;
+      if (!best || std::tie(g.size[*best], n) < std::tie(g.size[n], *best)) best = n;
+    }
   }
   return best;
 }
@@ -109,10 +139,7 @@ bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter) {
     if (g.alive(node) != node || g.size[node] > n_filter) continue;
     const auto target = largest_neighbor(g, node);
     if (!target) continue;
-    g.merged_into[node] = *target;
-    g.size[*target] += g.size[node];
-    auto& into = g.neighbors[*target];
-    into.insert(into.end(), g.neighbors[node].begin(), g.neighbors[node].end());
+    g.merge(node, *target);
     merged = true;
   }
   return merged;
