@@ -14,16 +14,21 @@ inline double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Ei
 }
 
 // Andrew's monotone chain (A. M. Andrew, "Another efficient algorithm for convex
-// hulls in two dimensions", Inf. Process. Lett. 9(5), 1979): the hull vertices
-// counter-clockwise, without collinear ones; one or two points for degenerate sets.
-inline std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> p) {
+// hulls in two dimensions", Inf. Process. Lett. 9(5), 1979): the hull vertices of
+// p counter-clockwise into `hull`, without collinear ones; one or two points for
+// degenerate sets. p is sorted and deduplicated in place; both keep their
+// capacity, so a caller that reuses them allocates nothing once they are large enough.
+inline void convex_hull_into(std::vector<Eigen::Vector2d>& p, std::vector<Eigen::Vector2d>& hull) {
   const auto lexicographic = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
   };
   std::sort(p.begin(), p.end(), lexicographic);
   p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  hull.resize(p.size() < 3 ? p.size() : 2 * p.size());
+  if (p.size() < 3) {
+    std::copy(p.begin(), p.end(), hull.begin());
+    return;
+  }
   std::size_t k = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {  // lower hull
     while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
@@ -34,6 +39,11 @@ inline std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> p) 
     hull[k++] = p[i];
   }
   hull.resize(k - 1);  // the last point is the first
+}
+
+inline std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> p) {
+  std::vector<Eigen::Vector2d> hull;
+  convex_hull_into(p, hull);
   return hull;
 }
 

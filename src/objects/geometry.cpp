@@ -8,7 +8,8 @@
 //      with a support plane, the span of heights and the extreme points in
 //      eight in-plane directions;
 //   2. spreads: extents along the principal axes and, with a plane, the hull
-//      candidates (the points outside the octagon of those extremes).
+//      candidates (the points outside the octagon of those extremes), listed
+//      per block and then gathered by segment into one array.
 // Between and after them, per segment (serial, segments in parallel): the 3x3
 // eigenproblem, the 2D convex hull and the minimum-area rectangle; last, the
 // segment adjacency from the supervoxel graph.
@@ -19,10 +20,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "convex_hull.hpp"
@@ -65,8 +68,8 @@ Blocks fixed_blocks(std::size_t points, std::size_t segments) {
   return blocks;
 }
 
-// Per-segment reduction over the points with a label 1..K: fold(acc, i, k) adds
-// point i of segment k (0-based) to its block's partial, each block on one
+// Per-segment reduction over the points with a label 1..K: fold(acc, i, k, b)
+// adds point i of segment k (0-based) to block b's partial, each block on one
 // thread; the partials are then merged with merge(into, from) in block order.
 template <typename Acc, typename Fold, typename Merge>
 std::vector<Acc> reduce_per_segment(const Labels& labels, std::size_t K, Fold&& fold, Merge&& merge) {
@@ -76,7 +79,7 @@ std::vector<Acc> reduce_per_segment(const Labels& labels, std::size_t K, Fold&& 
     partials[b].resize(K);
     const std::size_t end = std::min(labels.size(), (b + 1) * blocks.size);
     for (std::size_t i = b * blocks.size; i < end; ++i) {
-      if (labels[i] != 0 && labels[i] <= K) fold(partials[b][labels[i] - 1], i, labels[i] - 1);
+      if (labels[i] != 0 && labels[i] <= K) fold(partials[b][labels[i] - 1], i, labels[i] - 1, b);
     }
   });
   std::vector<Acc> total(K);
@@ -153,7 +156,7 @@ struct Moments {
 
 std::vector<Moments> segment_moments(const SegmentationWork& w, const SegmentLabels& segments,
                                      const std::optional<PlaneFrame>& frame) {
-  const auto fold = [&](Moments& m, std::size_t i, std::size_t) {
+  const auto fold = [&](Moments& m, std::size_t i, std::size_t, std::size_t) {
     const Vec3 p = w.cloud.points[i].cast<double>();
     m.n += 1;
     m.sum += p;
@@ -223,35 +226,62 @@ class Octagon {
 struct Spread {
   Vec3 lo = Vec3::Constant(kInf);  // along the principal axes, from the centroid
   Vec3 hi = Vec3::Constant(-kInf);
-  std::vector<Vec2> outside;       // with a plane: plane coordinates of the points outside the octagon
 };
 
-// Spread along the principal axes and, with a plane, the hull candidates: a
-// superset of the hull vertices, in point order.
+// With a plane: every segment's hull candidates (plane coordinates of its points
+// outside its octagon, a superset of its hull vertices), in point order, the
+// segments one after another: segment k's are [offsets[k], offsets[k + 1]).
+struct HullCandidates {
+  std::vector<std::uint32_t> offsets;
+  std::vector<Vec2> points;
+};
+
+// One block's hull candidates, (segment, point) in point order.
+using BlockCandidates = std::vector<std::pair<std::uint32_t, Vec2>>;
+
+// The blocks' candidates gathered by segment, blocks in order: a count per
+// segment, then a fill (no allocation per segment).
+HullCandidates gather(const std::vector<BlockCandidates>& blocks, std::size_t K) {
+  HullCandidates c;
+  c.offsets.assign(K + 1, 0);
+  for (const BlockCandidates& block : blocks) {
+    for (const auto& [k, u] : block) ++c.offsets[k + 1];
+  }
+  std::partial_sum(c.offsets.begin(), c.offsets.end(), c.offsets.begin());
+  c.points.resize(c.offsets.back());
+  std::vector<std::uint32_t> filled(c.offsets.begin(), c.offsets.end() - 1);
+  for (const BlockCandidates& block : blocks) {
+    for (const auto& [k, u] : block) c.points[filled[k]++] = u;
+  }
+  return c;
+}
+
+// Spread along the principal axes and, with a plane, the hull candidates.
 std::vector<Spread> segment_spreads(const SegmentationWork& w, const SegmentLabels& segments,
-                                    const std::vector<Principal>& principal,
-                                    const std::vector<Moments>& moments, const std::optional<PlaneFrame>& frame) {
+                                    const std::vector<Principal>& principal, const std::vector<Moments>& moments,
+                                    const std::optional<PlaneFrame>& frame, HullCandidates& candidates) {
   std::vector<Octagon> octagons;
   if (frame) octagons.reserve(moments.size());
   for (std::size_t k = 0; frame && k < moments.size(); ++k) octagons.emplace_back(moments[k].footprint);
-  const auto fold = [&](Spread& s, std::size_t i, std::size_t k) {
+  std::vector<BlockCandidates> outside(fixed_blocks(segments.points.size(), principal.size()).count);
+  const auto fold = [&](Spread& s, std::size_t i, std::size_t k, std::size_t b) {
     const Vec3 p = w.cloud.points[i].cast<double>();
     const Vec3 along = principal[k].axes.transpose() * (p - principal[k].centroid);
     s.lo = s.lo.cwiseMin(along), s.hi = s.hi.cwiseMax(along);
     if (!frame) return;
     const Vec2 u = frame->in_plane(p);
-    if (!octagons[k].contains(u)) s.outside.push_back(u);
+    if (!octagons[k].contains(u)) outside[b].emplace_back(static_cast<std::uint32_t>(k), u);
   };
   const auto merge = [](Spread& into, const Spread& from) {
     into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi);
-    into.outside.insert(into.outside.end(), from.outside.begin(), from.outside.end());
   };
-  return reduce_per_segment<Spread>(segments.points, principal.size(), fold, merge);
+  auto spreads = reduce_per_segment<Spread>(segments.points, principal.size(), fold, merge);
+  candidates = gather(outside, principal.size());
+  return spreads;
 }
 
 // --- per segment: hull and rectangle ------------------------------------------------
 
-using detail::convex_hull;
 
 // A rectangle in plane coordinates: side direction u (unit), v = u rotated by
 // +90 deg, and the spans [lo, hi] of the enclosed points along each.
@@ -321,12 +351,27 @@ OrientedBox principal_box(const Principal& p, const Spread& s) {
   return box;
 }
 
+// A thread's buffers for one segment's hull at a time: reused, so that a
+// segment costs no allocation once they have grown to the largest.
+struct HullScratch {
+  std::vector<Vec2> points, hull;
+};
+
 std::vector<OrientedBox> segment_boxes(const std::vector<Principal>& principal, const std::vector<Moments>& moments,
-                                       const std::vector<Spread>& spreads, const std::optional<PlaneFrame>& frame) {
+                                       const std::vector<Spread>& spreads, const std::optional<PlaneFrame>& frame,
+                                       const HullCandidates& candidates) {
   std::vector<OrientedBox> boxes(spreads.size());
+  tbb::enumerable_thread_specific<HullScratch> scratch;
   tbb::parallel_for(std::size_t{0}, boxes.size(), [&](std::size_t k) {
-    boxes[k] = frame ? box_on_plane(min_area_rectangle(convex_hull(spreads[k].outside)), moments[k].footprint, *frame)
-                     : principal_box(principal[k], spreads[k]);
+    if (!frame) {
+      boxes[k] = principal_box(principal[k], spreads[k]);
+      return;
+    }
+    HullScratch& s = scratch.local();
+    const auto first = candidates.points.begin();
+    s.points.assign(first + candidates.offsets[k], first + candidates.offsets[k + 1]);
+    detail::convex_hull_into(s.points, s.hull);
+    boxes[k] = box_on_plane(min_area_rectangle(s.hull), moments[k].footprint, *frame);
   });
   return boxes;
 }
@@ -436,8 +481,9 @@ std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, con
   const std::vector<Moments> moments = segment_moments(work, segments, frame);
   std::vector<Principal> principal(K);
   tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) { principal[k] = principal_frame(moments[k]); });
-  const std::vector<Spread> spreads = segment_spreads(work, segments, principal, moments, frame);
-  const std::vector<OrientedBox> boxes = segment_boxes(principal, moments, spreads, frame);
+  HullCandidates candidates;
+  const std::vector<Spread> spreads = segment_spreads(work, segments, principal, moments, frame, candidates);
+  const std::vector<OrientedBox> boxes = segment_boxes(principal, moments, spreads, frame, candidates);
   const std::vector<Vec3> normals = normal_sums(work, segments);
   const Vec3 up = frame ? frame->n : Vec3(0, -1, 0);  // without a plane: the sensor's up, -y
   std::vector<SegmentGeometry> out(K);
