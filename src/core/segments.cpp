@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "cell_keys.hpp"
+#include "lccp/core/grouped.hpp"
 #include "lccp/core/union_find.hpp"
 
 namespace lccp {
@@ -50,17 +51,18 @@ SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
 }
 
 // Segments as dense nodes with sizes (in supervoxels) and neighbour rows: one
-// row per node as the edges give it (with repeats), in compressed rows, so that
-// no node owns an allocation. A node merged into another hands it its rows: a
-// live node's neighbours are the rows on its chain (itself, then the nodes merged
-// into it, in merge order), which is what appending the lists would give.
+// row per node as the edges give it (with repeats), grouped in one array
+// (lccp/core/grouped.hpp), so that no node owns an allocation. A node merged
+// into another hands it its rows: a live node's neighbours are the rows on its
+// chain (itself, then the nodes merged into it, in merge order), which is what
+// appending the lists would give.
 struct SegmentGraph {
   static constexpr std::uint32_t kEnd = std::numeric_limits<std::uint32_t>::max();
 
   SegmentNodes nodes;
   std::vector<std::uint32_t> node_of_supervoxel;
   std::vector<std::uint32_t> size;
-  CompressedRows neighbors;                // per node: its neighbour nodes (updated to live ones)
+  Grouped<std::uint32_t> neighbors;        // per node: its neighbour nodes (updated to live ones)
   std::vector<std::uint32_t> merged_into;  // node -> node it merged into (itself if alive)
   std::vector<std::uint32_t> next_row;     // per node: the next node on its chain of rows (kEnd: none)
   std::vector<std::uint32_t> last_row;     // per live node: the last node on its chain
@@ -76,22 +78,15 @@ struct SegmentGraph {
   }
 };
 
-// The nodes' neighbour rows in edge order: a count per node, then a fill.
-CompressedRows neighbor_rows(const std::vector<std::uint32_t>& node_of, const std::vector<Edge>& edges,
-                             std::size_t count) {
-  CompressedRows rows;
-  rows.offsets.assign(count + 1, 0);
-  for (const Edge& e : edges) {
-    if (node_of[e.a] != node_of[e.b]) ++rows.offsets[node_of[e.a] + 1], ++rows.offsets[node_of[e.b] + 1];
-  }
-  std::partial_sum(rows.offsets.begin(), rows.offsets.end(), rows.offsets.begin());
-  rows.items.resize(rows.offsets.back());
-  std::vector<std::uint32_t> filled(rows.offsets.begin(), rows.offsets.end() - 1);
-  for (const Edge& e : edges) {
-    const std::uint32_t a = node_of[e.a], b = node_of[e.b];
-    if (a != b) rows.items[filled[a]++] = b, rows.items[filled[b]++] = a;
-  }
-  return rows;
+// The nodes' neighbour rows in edge order.
+Grouped<std::uint32_t> neighbor_rows(const std::vector<std::uint32_t>& node_of, const std::vector<Edge>& edges,
+                                     std::size_t count) {
+  return group_by_key<std::uint32_t>(count, [&](auto emit) {
+    for (const Edge& e : edges) {
+      const std::uint32_t a = node_of[e.a], b = node_of[e.b];
+      if (a != b) emit(a, b), emit(b, a);
+    }
+  });
 }
 
 SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, const std::vector<Edge>& edges) {

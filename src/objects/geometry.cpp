@@ -20,7 +20,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <numeric>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
@@ -30,6 +29,7 @@
 
 #include "convex_hull.hpp"
 #include "lccp/core/convexity.hpp"
+#include "lccp/core/grouped.hpp"
 #include "lccp/error.hpp"
 
 namespace lccp {
@@ -229,32 +229,11 @@ struct Spread {
 };
 
 // With a plane: every segment's hull candidates (plane coordinates of its points
-// outside its octagon, a superset of its hull vertices), in point order, the
-// segments one after another: segment k's are [offsets[k], offsets[k + 1]).
-struct HullCandidates {
-  std::vector<std::uint32_t> offsets;
-  std::vector<Vec2> points;
-};
+// outside its octagon, a superset of its hull vertices), in point order.
+using HullCandidates = Grouped<Vec2>;
 
 // One block's hull candidates, (segment, point) in point order.
 using BlockCandidates = std::vector<std::pair<std::uint32_t, Vec2>>;
-
-// The blocks' candidates gathered by segment, blocks in order: a count per
-// segment, then a fill (no allocation per segment).
-HullCandidates gather(const std::vector<BlockCandidates>& blocks, std::size_t K) {
-  HullCandidates c;
-  c.offsets.assign(K + 1, 0);
-  for (const BlockCandidates& block : blocks) {
-    for (const auto& [k, u] : block) ++c.offsets[k + 1];
-  }
-  std::partial_sum(c.offsets.begin(), c.offsets.end(), c.offsets.begin());
-  c.points.resize(c.offsets.back());
-  std::vector<std::uint32_t> filled(c.offsets.begin(), c.offsets.end() - 1);
-  for (const BlockCandidates& block : blocks) {
-    for (const auto& [k, u] : block) c.points[filled[k]++] = u;
-  }
-  return c;
-}
 
 // Spread along the principal axes and, with a plane, the hull candidates.
 std::vector<Spread> segment_spreads(const SegmentationWork& w, const SegmentLabels& segments,
@@ -276,7 +255,11 @@ std::vector<Spread> segment_spreads(const SegmentationWork& w, const SegmentLabe
     into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi);
   };
   auto spreads = reduce_per_segment<Spread>(segments.points, principal.size(), fold, merge);
-  candidates = gather(outside, principal.size());
+  candidates = group_by_key<Vec2>(principal.size(), [&](auto emit) {
+    for (const BlockCandidates& block : outside) {
+      for (const auto& [k, u] : block) emit(k, u);
+    }
+  });
   return spreads;
 }
 
@@ -368,8 +351,7 @@ std::vector<OrientedBox> segment_boxes(const std::vector<Principal>& principal, 
       return;
     }
     HullScratch& s = scratch.local();
-    const auto first = candidates.points.begin();
-    s.points.assign(first + candidates.offsets[k], first + candidates.offsets[k + 1]);
+    s.points.assign(candidates[k].begin(), candidates[k].end());
     detail::convex_hull_into(s.points, s.hull);
     boxes[k] = box_on_plane(min_area_rectangle(s.hull), moments[k].footprint, *frame);
   });
