@@ -2,9 +2,12 @@
 // Convex hulls in a plane's coordinates, for the footprints of segments on the
 // support plane (geometry.cpp: boxes; grouping.cpp: what stands inside what).
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "lccp/core/grouped.hpp"
 
 namespace lccp::detail {
 
@@ -41,15 +44,25 @@ inline void convex_hull_into(std::vector<Eigen::Vector2d>& p, std::vector<Eigen:
   hull.resize(k - 1);  // the last point is the first
 }
 
-inline std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> p) {
-  std::vector<Eigen::Vector2d> hull;
-  convex_hull_into(p, hull);
-  return hull;
+// The hull of each group, the hulls one after another in one array; two
+// buffers reused for all of them.
+inline Grouped<Eigen::Vector2d> hulls_of(const Grouped<Eigen::Vector2d>& groups) {
+  Grouped<Eigen::Vector2d> hulls;
+  hulls.offsets.reserve(groups.size() + 1);
+  hulls.offsets.push_back(0);
+  std::vector<Eigen::Vector2d> points, hull;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    points.assign(groups[k].begin(), groups[k].end());
+    convex_hull_into(points, hull);
+    hulls.items.insert(hulls.items.end(), hull.begin(), hull.end());
+    hulls.offsets.push_back(static_cast<std::uint32_t>(hulls.items.size()));
+  }
+  return hulls;
 }
 
 // Whether q lies inside (or on) the counter-clockwise convex polygon `hull`;
 // never for a hull of fewer than three vertices.
-inline bool inside_hull(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& q) {
+inline bool inside_hull(std::span<const Eigen::Vector2d> hull, const Eigen::Vector2d& q) {
   if (hull.size() < 3) return false;
   for (std::size_t i = 0; i < hull.size(); ++i) {
     if (cross(hull[i], hull[(i + 1) % hull.size()], q) < 0) return false;

@@ -13,13 +13,14 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
-#include <map>
+#include <span>
 #include <utility>
 
 #include <Eigen/Geometry>
 
 #include "convex_hull.hpp"
 #include "occlusion.hpp"
+#include "lccp/core/grouped.hpp"
 #include "lccp/core/union_find.hpp"
 
 namespace lccp {
@@ -29,14 +30,16 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 
 // One part on the support: heights above the plane, points, the centroid of
-// its points and the hull of its supervoxels in plane coordinates.
+// its points.
 struct PartShape {
   double bottom = std::numeric_limits<double>::infinity();
   double top = -std::numeric_limits<double>::infinity();
   std::uint64_t points = 0;
   Vec3 sum = Vec3::Zero();
-  std::vector<Vec2> hull;
 };
+
+// Per part (0-based) the hull of its supervoxels' centroids in plane coordinates.
+using Hulls = Grouped<Vec2>;
 
 // Plane coordinates: a right-handed frame (e1, e2, n) on the plane normal n.
 struct InPlane {
@@ -61,14 +64,17 @@ std::vector<PartShape> part_shapes(const SegmentationWork& w, const Plane& plane
     s.bottom = std::min(s.bottom, height), s.top = std::max(s.top, height);
     s.points += 1, s.sum += w.cloud.points[i].cast<double>();
   }
-  const InPlane frame(plane.normal.cast<double>());
-  std::vector<std::vector<Vec2>> members(count);
-  for (std::size_t v = 0; v < w.segment_of_supervoxel.size(); ++v) {
-    const std::uint32_t label = w.segment_of_supervoxel[v];
-    if (label != 0) members[label - 1].push_back(frame(w.supervoxels.centroids[v].cast<double>()));
-  }
-  for (std::uint32_t k = 0; k < count; ++k) shapes[k].hull = detail::convex_hull(std::move(members[k]));
   return shapes;
+}
+
+Hulls part_hulls(const SegmentationWork& w, const Plane& plane) {
+  const InPlane frame(plane.normal.cast<double>());
+  return detail::hulls_of(group_by_key<Vec2>(w.result.segment_count, [&](auto emit) {
+    for (std::size_t v = 0; v < w.segment_of_supervoxel.size(); ++v) {
+      const std::uint32_t label = w.segment_of_supervoxel[v];
+      if (label != 0) emit(label - 1, frame(w.supervoxels.centroids[v].cast<double>()));
+    }
+  }));
 }
 
 // Where parts p < q meet: supervoxel edges between them, of those the edges
@@ -123,7 +129,7 @@ Footing footing(const PartShape& part, const GroupingConfig& config) {
 }
 
 // Whether every vertex of `hull` lies inside `outer`.
-bool inside(const std::vector<Vec2>& hull, const std::vector<Vec2>& outer) {
+bool inside(std::span<const Vec2> hull, std::span<const Vec2> outer) {
   if (hull.empty()) return false;
   for (const Vec2& vertex : hull) {
     if (!detail::inside_hull(outer, vertex)) return false;
@@ -200,18 +206,23 @@ void hang_clusters(ConcurrentUnionFind& sets, const std::vector<std::uint8_t>& a
   for (const Side& s : sides) {
     if (s.hangs && loose(s.part) && loose(s.other)) clusters.unite(s.part, s.other);
   }
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> edges;  // (cluster, body) -> edges
+  // (cluster, body, edges) per side of a loose part on a body; summed per (cluster, body) in that order.
+  std::vector<std::array<std::uint32_t, 3>> links;
   for (const Side& s : sides) {
-    if (s.hangs && loose(s.part) && anchor[s.other]) edges[{clusters.find(s.part), s.other}] += s.edges;
+    if (s.hangs && loose(s.part) && anchor[s.other]) links.push_back({clusters.find(s.part), s.other, s.edges});
   }
-  std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> best;  // cluster -> (edges, body)
-  for (const auto& [key, count] : edges) {
-    auto& b = best[key.first];
-    if (count > b.first) b = {count, key.second};
+  std::sort(links.begin(), links.end());
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> best(feet.size(), {0, kNone});  // per cluster: (edges, body)
+  for (std::size_t first = 0, last = 0; first < links.size(); first = last) {
+    const auto same = [&](std::size_t i) { return links[i][0] == links[first][0] && links[i][1] == links[first][1]; };
+    std::uint32_t edges = 0;
+    for (last = first; last < links.size() && same(last); ++last) edges += links[last][2];
+    auto& b = best[links[first][0]];
+    if (edges > b.first) b = {edges, links[first][1]};
   }
   for (std::uint32_t k = 0; k < feet.size(); ++k) {
-    const auto found = loose(k) ? best.find(clusters.find(k)) : best.end();
-    if (found != best.end()) sets.unite(k, found->second.second);
+    if (loose(k) && best[clusters.find(k)].second != kNone) sets.unite(k, best[clusters.find(k)].second);
   }
 }
 
@@ -220,28 +231,28 @@ void hang_clusters(ConcurrentUnionFind& sets, const std::vector<std::uint8_t>& a
 // or its inner wall seen through the opening): it joins it, until no more do. An
 // object's footprint is the hull of its parts' hulls; joining a part inside
 // it changes neither that nor its top.
-void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shapes, const std::vector<Side>& sides,
-                  const GroupingConfig& config) {
+void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shapes, const Hulls& hulls,
+                  const std::vector<Side>& sides, const GroupingConfig& config) {
   const auto count = static_cast<std::uint32_t>(shapes.size());
-  std::vector<std::vector<Vec2>> corners(count);
   std::vector<double> top(count, -std::numeric_limits<double>::infinity());
-  for (std::uint32_t k = 0; k < count; ++k) {
-    const std::uint32_t root = sets.find(k);
-    corners[root].insert(corners[root].end(), shapes[k].hull.begin(), shapes[k].hull.end());
-    top[root] = std::max(top[root], shapes[k].top);
-  }
-  std::vector<std::vector<Vec2>> hulls(count);
-  for (std::uint32_t k = 0; k < count; ++k) hulls[k] = detail::convex_hull(std::move(corners[k]));
+  for (std::uint32_t k = 0; k < count; ++k) top[sets.find(k)] = std::max(top[sets.find(k)], shapes[k].top);
+  const Hulls footprints = detail::hulls_of(group_by_key<Vec2>(count, [&](auto emit) {
+    for (std::uint32_t k = 0; k < count; ++k) {
+      for (const Vec2& corner : hulls[k]) emit(sets.find(k), corner);
+    }
+  }));
+  std::vector<std::uint32_t> footprint(count);  // per object (root): its row of footprints
+  std::iota(footprint.begin(), footprint.end(), 0u);
   for (bool joined = true; joined;) {
     joined = false;
     for (const Side& s : sides) {
       if (sets.find(s.part) != s.part) continue;  // one part alone
       const std::uint32_t object = sets.find(s.other);
       if (object == s.part || shapes[s.part].top > top[object] + config.contact_m) continue;
-      if (!inside(shapes[s.part].hull, hulls[object])) continue;
+      if (!inside(hulls[s.part], footprints[footprint[object]])) continue;
       sets.unite(s.part, object);
       const std::uint32_t root = sets.find(object);
-      if (root != object) hulls[root] = hulls[object], top[root] = top[object];
+      if (root != object) footprint[root] = footprint[object], top[root] = top[object];
       joined = true;
     }
   }
@@ -291,13 +302,14 @@ std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConf
   const Plane& plane = w.support->plane;
   const double cos_upward = std::cos(config.upward_max_tilt_deg * std::numbers::pi / 180.0);
   const std::vector<PartShape> shapes = part_shapes(w, plane);
+  const Hulls hulls = part_hulls(w, plane);
   std::vector<Footing> feet(count);
   for (std::uint32_t k = 0; k < count; ++k) feet[k] = footing(shapes[k], config);
   const std::vector<Side> sides = sides_of(junctions(w, plane, cos_upward), shapes, feet);
   ConcurrentUnionFind sets(count);
   join_hidden(sets, w, lccp, feet, sides);
   hang_clusters(sets, anchors(feet, sides), feet, sides);
-  join_insides(sets, shapes, sides, config);
+  join_insides(sets, shapes, hulls, sides, config);
   return number_objects(sets, shapes, feet);
 }
 

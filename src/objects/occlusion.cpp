@@ -10,10 +10,12 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 
 #include <Eigen/Geometry>
 
 #include "lccp/core/convexity.hpp"
+#include "lccp/core/grouped.hpp"
 
 namespace lccp::detail {
 namespace {
@@ -110,22 +112,23 @@ bool continues(const Patch& a, const Patch& b, const LccpConfig& config, const V
 }
 
 // Per part its supervoxels.
-std::vector<std::vector<std::uint32_t>> supervoxels_of_parts(const SegmentationWork& w) {
-  std::vector<std::vector<std::uint32_t>> members(w.result.segment_count);
-  for (std::uint32_t s = 0; s < w.segment_of_supervoxel.size(); ++s) {
-    if (w.segment_of_supervoxel[s] != 0) members[w.segment_of_supervoxel[s] - 1].push_back(s);
-  }
-  return members;
+Grouped<std::uint32_t> supervoxels_of_parts(const SegmentationWork& w) {
+  return group_by_key<std::uint32_t>(w.result.segment_count, [&](auto emit) {
+    for (std::uint32_t s = 0; s < w.segment_of_supervoxel.size(); ++s) {
+      if (w.segment_of_supervoxel[s] != 0) emit(w.segment_of_supervoxel[s] - 1, s);
+    }
+  });
 }
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 // The pairs of supervoxels (one of each part) across the gap between two
 // parts: within two seed spacings of the nearest pair, itself within max_gap
 // (the facing patches: where a box shows two faces on either side of an
-// occluder, the nearest pair may join a top to a front).
-std::vector<std::pair<std::uint32_t, std::uint32_t>> facing_pairs(const SegmentationWork& w,
-                                                                  const std::vector<std::uint32_t>& a,
-                                                                  const std::vector<std::uint32_t>& b,
-                                                                  const LccpConfig& config) {
+// occluder, the nearest pair may join a top to a front). Into `pairs`,
+// cleared first: one buffer serves every pair of parts.
+void facing_pairs(const SegmentationWork& w, std::span<const std::uint32_t> a, std::span<const std::uint32_t> b,
+                  const LccpConfig& config, Pairs& pairs) {
   const auto distance = [&](std::uint32_t i, std::uint32_t j) {
     return (w.supervoxels.centroids[i] - w.supervoxels.centroids[j]).norm();
   };
@@ -133,22 +136,20 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> facing_pairs(const Segmenta
   for (const std::uint32_t i : a) {
     for (const std::uint32_t j : b) nearest = std::min(nearest, distance(i, j));
   }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  if (!(nearest <= config.grouping.occluded_gap_m)) return pairs;
+  pairs.clear();
+  if (!(nearest <= config.grouping.occluded_gap_m)) return;
   const float reach = nearest + 2.0f * config.supervoxels.seed_size_m;
   for (const std::uint32_t i : a) {
     for (const std::uint32_t j : b) {
       if (distance(i, j) <= reach) pairs.emplace_back(i, j);
     }
   }
-  return pairs;
 }
 
 // Whether parts p and q (labels) continue each other behind a third object
 // across one of their facing pairs.
 bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const LccpConfig& config,
-                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& facing, std::uint32_t p,
-                     std::uint32_t q) {
+                     const Pairs& facing, std::uint32_t p, std::uint32_t q) {
   const Vec3 up = w.support ? w.support->plane.normal : Vec3::Zero();
   for (const auto& [i, j] : facing) {
     const Patch a{w.supervoxels.centroids[i], w.supervoxels.normals[i]};
@@ -164,12 +165,13 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     const SegmentationWork& w, const LccpConfig& config, const std::vector<std::uint8_t>& eligible,
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent) {
   const SeenDepth seen(w.cloud, w.result.labels, config.voxels.voxel_size_m);
-  const std::vector<std::vector<std::uint32_t>> members = supervoxels_of_parts(w);
+  const Grouped<std::uint32_t> members = supervoxels_of_parts(w);
+  Pairs facing;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   for (std::uint32_t p = 0; p < members.size(); ++p) {
     for (std::uint32_t q = p + 1; q < members.size() && eligible[p]; ++q) {
       if (!eligible[q] || std::binary_search(adjacent.begin(), adjacent.end(), std::pair{p, q})) continue;
-      const auto facing = facing_pairs(w, members[p], members[q], config);
+      facing_pairs(w, members[p], members[q], config, facing);
       if (continue_hidden(w, seen, config, facing, p + 1, q + 1)) pairs.emplace_back(p, q);
     }
   }
