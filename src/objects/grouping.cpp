@@ -13,6 +13,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <utility>
 
@@ -280,9 +281,8 @@ std::vector<std::uint32_t> number_objects(ConcurrentUnionFind& sets, const std::
 
 // Parts a nearer object splits (detail::hidden_continuations), among those
 // that are not flat, are one.
-void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const LccpConfig& config,
-                 const std::vector<Footing>& feet, const std::vector<Side>& sides) {
-  if (config.grouping.occluded_gap_m <= 0.0f) return;
+void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const detail::SeenDepth& seen,
+                 const LccpConfig& config, const std::vector<Footing>& feet, const std::vector<Side>& sides) {
   std::vector<std::uint8_t> eligible(feet.size());
   for (std::size_t k = 0; k < feet.size(); ++k) eligible[k] = feet[k] != Footing::flat;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent;
@@ -290,7 +290,7 @@ void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const Lcc
     if (s.part < s.other) adjacent.emplace_back(s.part, s.other);
   }
   std::sort(adjacent.begin(), adjacent.end());
-  for (const auto& [p, q] : detail::hidden_continuations(w, config, eligible, adjacent)) sets.unite(p, q);
+  for (const auto& [p, q] : detail::hidden_continuations(w, seen, config, eligible, adjacent)) sets.unite(p, q);
 }
 
 std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
@@ -307,7 +307,9 @@ std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConf
   for (std::uint32_t k = 0; k < count; ++k) feet[k] = footing(shapes[k], config);
   const std::vector<Side> sides = sides_of(junctions(w, plane, cos_upward), shapes, feet);
   ConcurrentUnionFind sets(count);
-  join_hidden(sets, w, lccp, feet, sides);
+  std::optional<detail::SeenDepth> seen;  // what nearer objects hide: occluded_gap_m 0 asks nothing of it
+  if (config.occluded_gap_m > 0.0f) seen.emplace(w.cloud, w.result.labels, lccp.voxels.voxel_size_m);
+  if (seen) join_hidden(sets, w, *seen, lccp, feet, sides);
   hang_clusters(sets, anchors(feet, sides), feet, sides);
   join_insides(sets, shapes, hulls, sides, config);
   return number_objects(sets, shapes, feet);

@@ -22,55 +22,56 @@ namespace {
 
 using Vec3 = Eigen::Vector3f;
 
-// What the sensor saw first in one direction: the depth, and the part of
-// that point (a label of work.result; 0: none, such as the support's).
-struct Seen {
-  float depth = 0;
-  std::uint32_t part = 0;
-};
+// floor(v) for a finite v within long's range, without a call into libm.
+long floor_of(float v) {
+  const auto t = static_cast<long>(v);
+  return t - (v < static_cast<float>(t));
+}
 
-// The nearest point seen per direction from the sensor: bins of `bin` in
-// (x / z, y / z), over the cloud's finite points in front of it (z > 0).
-class SeenDepth {
- public:
-  SeenDepth(const CloudView& cloud, const Labels& parts, float bin) : bin_(bin) {
-    float lo_u = kInf, lo_v = kInf, hi_u = -kInf, hi_v = -kInf;
-    for (const Vec3& p : cloud.points) {
-      if (!(p.z() > 0.0f) || !std::isfinite(p.x() + p.y())) continue;
-      lo_u = std::min(lo_u, p.x() / p.z()), hi_u = std::max(hi_u, p.x() / p.z());
-      lo_v = std::min(lo_v, p.y() / p.z()), hi_v = std::max(hi_v, p.y() / p.z());
-    }
-    if (!(lo_u <= hi_u)) return;
-    lo_u_ = lo_u, lo_v_ = lo_v;
-    columns_ = static_cast<long>((hi_u - lo_u) / bin_) + 1, rows_ = static_cast<long>((hi_v - lo_v) / bin_) + 1;
-    nearest_.assign(static_cast<std::size_t>(columns_ * rows_), Seen{kInf, 0});
-    for (std::size_t i = 0; i < cloud.points.size(); ++i) {
-      const Vec3& p = cloud.points[i];
-      if (!(p.z() > 0.0f) || !std::isfinite(p.x() + p.y())) continue;
-      Seen& seen = nearest_[static_cast<std::size_t>(index(p))];
-      if (p.z() < seen.depth) seen = {p.z(), parts[i]};
-    }
+}  // namespace
+
+// Two passes over the directions (x / z, y / z), each divided once: their
+// bounds, then each point into its bin.
+SeenDepth::SeenDepth(const CloudView& cloud, const Labels& parts, float bin) : bin_(bin) {
+  const std::size_t n = cloud.size();
+  std::vector<float> u(n), v(n);
+  float lo_u = kInf, lo_v = kInf, hi_u = -kInf, hi_v = -kInf;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = cloud.points[i];
+    const bool ahead = p.z() > 0.0f && std::isfinite(p.x() + p.y());
+    u[i] = ahead ? p.x() / p.z() : kInf, v[i] = ahead ? p.y() / p.z() : kInf;
+    if (!ahead) continue;
+    lo_u = std::min(lo_u, u[i]), hi_u = std::max(hi_u, u[i]);
+    lo_v = std::min(lo_v, v[i]), hi_v = std::max(hi_v, v[i]);
   }
-
-  // The nearest point seen in x's direction; empty where nothing was seen.
-  std::optional<Seen> at(const Vec3& x) const {
-    const long i = x.z() > 0.0f ? index(x) : -1;
-    if (i < 0 || !std::isfinite(nearest_[static_cast<std::size_t>(i)].depth)) return std::nullopt;
-    return nearest_[static_cast<std::size_t>(i)];
+  if (!(lo_u <= hi_u)) return;
+  lo_u_ = lo_u, lo_v_ = lo_v;
+  columns_ = static_cast<long>((hi_u - lo_u) / bin_) + 1, rows_ = static_cast<long>((hi_v - lo_v) / bin_) + 1;
+  nearest_.assign(static_cast<std::size_t>(columns_ * rows_), Seen{kInf, 0});
+  for (std::size_t i = 0; i < n; ++i) {
+    if (u[i] == kInf) continue;
+    const float z = cloud.points[i].z();
+    const auto bin_index = static_cast<std::size_t>(static_cast<long>((v[i] - lo_v) / bin_) * columns_ +
+                                                    static_cast<long>((u[i] - lo_u) / bin_));
+    Seen& seen = nearest_[bin_index];
+    if (z < seen.depth) seen = {z, parts[i]};
   }
+}
 
- private:
-  static constexpr float kInf = std::numeric_limits<float>::infinity();
-  long index(const Vec3& p) const {
-    const long c = static_cast<long>(std::floor((p.x() / p.z() - lo_u_) / bin_));
-    const long r = static_cast<long>(std::floor((p.y() / p.z() - lo_v_) / bin_));
-    return c < 0 || r < 0 || c >= columns_ || r >= rows_ ? -1 : r * columns_ + c;
-  }
+std::optional<Seen> SeenDepth::at(const Vec3& x) const {
+  const long i = x.z() > 0.0f ? index(x) : -1;
+  if (i < 0 || !std::isfinite(nearest_[static_cast<std::size_t>(i)].depth)) return std::nullopt;
+  return nearest_[static_cast<std::size_t>(i)];
+}
 
-  float bin_, lo_u_ = 0, lo_v_ = 0;
-  long columns_ = 0, rows_ = 0;
-  std::vector<Seen> nearest_;
-};
+long SeenDepth::index(const Vec3& p) const {
+  const float u = (p.x() / p.z() - lo_u_) / bin_, v = (p.y() / p.z() - lo_v_) / bin_;
+  if (!(std::abs(u) < 1e9f && std::abs(v) < 1e9f)) return -1;
+  const long c = floor_of(u), r = floor_of(v);
+  return c < 0 || r < 0 || c >= columns_ || r >= rows_ ? -1 : r * columns_ + c;
+}
+
+namespace {
 
 // Whether the sensor cannot see the segment from a (on part p) to b (on part
 // q) for a third object: no sample on it is seen past or falls on a point of
@@ -162,9 +163,8 @@ bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const Lcc
 }  // namespace
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
-    const SegmentationWork& w, const LccpConfig& config, const std::vector<std::uint8_t>& eligible,
-    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent) {
-  const SeenDepth seen(w.cloud, w.result.labels, config.voxels.voxel_size_m);
+    const SegmentationWork& w, const SeenDepth& seen, const LccpConfig& config,
+    const std::vector<std::uint8_t>& eligible, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent) {
   const Grouped<std::uint32_t> members = supervoxels_of_parts(w);
   Pairs facing;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;

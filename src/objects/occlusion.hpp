@@ -2,6 +2,8 @@
 // One surface seen in pieces around a nearer object (grouping.cpp): which
 // parts continue each other behind an occluder.
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -9,6 +11,31 @@
 #include "lccp/core/lccp.hpp"
 
 namespace lccp::detail {
+
+// What the sensor saw first in one direction: the depth, and the part of
+// that point (a label of work.result; 0: none, such as the support's).
+struct Seen {
+  float depth = 0;
+  std::uint32_t part = 0;
+};
+
+// The nearest point seen per direction from the sensor: bins of `bin` in
+// (x / z, y / z), over the cloud's finite points in front of it (z > 0).
+// Built once per frame, for every question below.
+class SeenDepth {
+ public:
+  SeenDepth(const CloudView& cloud, const Labels& parts, float bin);
+  // The nearest point seen in x's direction; empty where nothing was seen.
+  std::optional<Seen> at(const Eigen::Vector3f& x) const;
+
+ private:
+  static constexpr float kInf = std::numeric_limits<float>::infinity();
+  long index(const Eigen::Vector3f& p) const;  // -1: outside the bins
+
+  float bin_, lo_u_ = 0, lo_v_ = 0;
+  long columns_ = 0, rows_ = 0;
+  std::vector<Seen> nearest_;
+};
 
 // Pairs of parts (0-based labels - 1, a < b) of work.result that are one
 // surface seen on either side of a nearer object: parts `eligible` (per part)
@@ -20,7 +47,7 @@ namespace lccp::detail {
 // sensor (the origin) meets a nearer point or none, and at least one a nearer.
 // A segment it sees past (the table or the wall behind a gap) is not hidden.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
-    const SegmentationWork& work, const LccpConfig& config, const std::vector<std::uint8_t>& eligible,
-    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent);
+    const SegmentationWork& work, const SeenDepth& seen, const LccpConfig& config,
+    const std::vector<std::uint8_t>& eligible, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent);
 
 }  // namespace lccp::detail
