@@ -9,8 +9,9 @@
 //   are visible, and where it is when it is not (in the body's part, or in an
 //   object apart from the mug's). The robot issue asks for 95 % and 90 %; that
 //   is not reached yet (perf/RESULTS.md, "Issue 33": P1 often cuts the handle in
-//   two, and pieces whose joints the body hides touch no body), so the figures
-//   are printed, not asserted.
+//   two, or takes it into the body's part), so the figures are printed, and only
+//   the first share is held to what it is today, rounded down (a floor against
+//   losing the handle held behind its mug: detail::held_behind).
 // Run on the bundled recording and on the scene's whole 10 s period rendered in
 // process; each prints its figures (perf/RESULTS.md quotes them).
 #include <cstdio>
@@ -153,7 +154,7 @@ RobotFigures run(FrameSource& source, const synthetic::TabletopScene& scene) {
   return figures;
 }
 
-void report_and_check(const char* name, const RobotFigures& f) {
+void report_and_check(const char* name, const RobotFigures& f, double min_handle_share) {
   std::printf("%s: handle visible (>= %zu points) in %d frames; its own part of the mug in %d (%.1f %%); "
               "and centroid within 1 cm in %d (%.1f %%), worst %.1f mm; in the body's part in %d, in another "
               "object in %d; ids kept in %d of %d pairs (%.2f %%)\n",
@@ -164,6 +165,7 @@ void report_and_check(const char* name, const RobotFigures& f) {
   ASSERT_GT(f.handle_frames, 0);
   ASSERT_GT(f.id_pairs, 0);
   EXPECT_GE(f.id_kept, 0.97 * f.id_pairs);
+  EXPECT_GE(f.handle_own_part, min_handle_share * f.handle_frames);
 }
 
 // The scene's frames 0..n-1 as a sensor would deliver them, timestamps at 30 Hz.
@@ -188,16 +190,43 @@ class RenderedScene : public FrameSource {
   std::uint64_t next_ = 0;
 };
 
+// The id holding most of the points with truth label `label` (0 and the support excluded).
+std::uint32_t id_of_label(const Labels& ids, const Labels& truth, std::uint32_t label, std::uint32_t support_id) {
+  std::vector<std::size_t> points;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (truth[i] == label) points.push_back(i);
+  }
+  return best_id(ids, points, support_id);
+}
+
+// Frame 31 of the scene: the mug's handle ends behind the mug's silhouette,
+// about 1 cm from the body's nearest visible points, so no voxel of it touches
+// the body, and its lowest point is 1.8 cm above the table (object_contact_m:
+// 1.5). It is held by the body it vanishes behind (detail::held_behind): a
+// part of the mug object, not the body's part.
+TEST(RobotScene, AHandleWhoseEndsTheMugHidesIsAPartOfTheMug) {
+  const synthetic::TabletopScene scene;
+  const synthetic::SyntheticFrame frame = scene.render(31);
+  const SceneSegmentation seg = robot_segmenter().segment(back_project(frame.depth));
+  const std::uint32_t handle = object_label(synthetic::kMugObject, synthetic::kHandlePart);
+  const std::uint32_t body = object_label(synthetic::kMugObject);
+  EXPECT_NE(id_of_label(seg.labels, frame.labels, handle, seg.support_id),
+            id_of_label(seg.labels, frame.labels, body, seg.support_id));
+  const std::uint32_t mug = id_of_label(seg.objects, frame.labels, body, seg.support_id);
+  EXPECT_NE(mug, 0u);
+  EXPECT_EQ(id_of_label(seg.objects, frame.labels, handle, seg.support_id), mug);
+}
+
 TEST(RobotScene, BundledRecordingIdsStayStable) {
   const synthetic::TabletopScene scene;
   const std::unique_ptr<FrameSource> recording = open_recording(kRecording);
-  report_and_check("recording", run(*recording, scene));
+  report_and_check("recording", run(*recording, scene), 0.85);  // 40 of 44 frames at the floor's commit
 }
 
 TEST(RobotScene, WholeScenePeriodIdsStayStable) {
   const synthetic::TabletopScene scene;
   RenderedScene frames(scene, 300);  // 10 s: every motion of the scene once
-  report_and_check("rendered 300 frames", run(frames, scene));
+  report_and_check("rendered 300 frames", run(frames, scene), 0.70);  // 116 of 160
 }
 
 }  // namespace

@@ -198,8 +198,10 @@ struct LimitsConfig {
 // body of an object of its own. A part that does neither hangs off the side
 // of a neighbour (a handle, a spout, a knob) and joins the neighbour it shares
 // most supervoxel edges with; so does a part lying inside a neighbour's
-// footprint, below its top (a container's floor), and a part that continues
-// another behind a nearer object (occluded_gap_m). The paper's object level
+// footprint, below its top (a container's floor), a part that continues
+// another behind a nearer object (occluded_gap_m), and a part hanging in the
+// air beside a nearer body it vanishes behind, within a seed spacing of it
+// (a handle whose ends the mug hides). The paper's object level
 // (beta_thresh 180 deg after plane removal, config/paper-robot.yaml) joins
 // every pair of touching objects. Needs the support plane.
 struct GroupingConfig {
@@ -214,7 +216,8 @@ struct GroupingConfig {
   // nearer object when the paper's convexity test (eq. (5)) joins their
   // nearest patches across the gap and the sensor cannot see the gap
   // (src/objects/occlusion.hpp); gaps up to this wide (a mug or a box in
-  // front of a box).
+  // front of a box). Also how far behind a nearer body a part hanging in the
+  // air may vanish and be held by it. 0: neither.
   float occluded_gap_m = 0.15f;
 };
 

@@ -156,7 +156,8 @@ std::vector<Key> scene_keys() {
       float_key("upward_max_tilt_deg", [](auto& c) -> auto& { return c.grouping.upward_max_tilt_deg; },
                 "a face this close to the support's normal faces up (degrees)"),
       float_key("occluded_gap_m", [](auto& c) -> auto& { return c.grouping.occluded_gap_m; },
-                "parts this far apart may be one surface behind a nearer object (metres; 0: never)"),
+                "parts this far apart may be one surface behind a nearer object, a part hanging in the air "
+                "this far behind a body be held by it (metres; 0: never)"),
   };
 }
 

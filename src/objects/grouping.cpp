@@ -293,6 +293,19 @@ void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const det
   for (const auto& [p, q] : detail::hidden_continuations(w, seen, config, eligible, adjacent)) sets.unite(p, q);
 }
 
+// Parts off the support in no object with a body (loose: hang_clusters found
+// none they hang off), each joined to the body that holds it behind itself
+// (detail::held_behind).
+void join_held_behind(ConcurrentUnionFind& sets, const SegmentationWork& w, const detail::SeenDepth& seen,
+                      const LccpConfig& config, const std::vector<std::uint8_t>& bodies,
+                      const std::vector<Footing>& feet) {
+  const auto count = static_cast<std::uint32_t>(feet.size());
+  std::vector<std::uint8_t> with_body(count, 0), loose(count, 0);
+  for (std::uint32_t k = 0; k < count; ++k) with_body[sets.find(k)] |= bodies[k];
+  for (std::uint32_t k = 0; k < count; ++k) loose[k] = feet[k] == Footing::off && !with_body[sets.find(k)];
+  for (const auto& [part, body] : detail::held_behind(w, seen, config, loose, bodies)) sets.unite(part, body);
+}
+
 std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   const GroupingConfig& config = lccp.grouping;
   const std::uint32_t count = w.result.segment_count;
@@ -310,7 +323,9 @@ std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConf
   std::optional<detail::SeenDepth> seen;  // what nearer objects hide: occluded_gap_m 0 asks nothing of it
   if (config.occluded_gap_m > 0.0f) seen.emplace(w.cloud, w.result.labels, lccp.voxels.voxel_size_m);
   if (seen) join_hidden(sets, w, *seen, lccp, feet, sides);
-  hang_clusters(sets, anchors(feet, sides), feet, sides);
+  const std::vector<std::uint8_t> bodies = anchors(feet, sides);
+  hang_clusters(sets, bodies, feet, sides);
+  if (seen) join_held_behind(sets, w, *seen, lccp, bodies, feet);
   join_insides(sets, shapes, hulls, sides, config);
   return number_objects(sets, shapes, feet);
 }

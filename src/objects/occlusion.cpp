@@ -2,7 +2,9 @@
 // do not touch (an occluded box left and right of a mug). Whether two parts
 // continue each other behind the occluder is decided with the paper's own
 // test, eq. (5) on their nearest patches, and with what the sensor saw along
-// the segment between them (occlusion.hpp).
+// the segment between them (occlusion.hpp). A part that hangs in the air,
+// touching nothing, is held by what the sensor does not see: the body it
+// vanishes behind, if it comes close to it there (held_behind).
 #include "occlusion.hpp"
 
 #include <algorithm>
@@ -160,6 +162,70 @@ bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const Lcc
   return false;
 }
 
+// Where a loose part meets a nearer body in the image: the part's pixel of a
+// pair of 4-neighbouring pixels whose other pixel is the body's, nearer by at
+// most max_gap. Sorted by (part, body, pixel).
+struct Border {
+  std::uint32_t part = 0, body = 0;  // 0-based
+  std::size_t pixel = 0;             // the part's
+  friend auto operator<=>(const Border&, const Border&) = default;
+};
+
+std::vector<Border> borders_behind(const SegmentationWork& w, const std::vector<std::uint8_t>& loose,
+                                   const std::vector<std::uint8_t>& bodies, float max_gap) {
+  const Labels& labels = w.result.labels;
+  std::vector<Border> borders;
+  const auto look = [&](std::size_t i, std::size_t j) {  // i's part behind j's body
+    const std::uint32_t a = labels[i], b = labels[j];
+    if (a == 0 || b == 0 || !loose[a - 1] || !bodies[b - 1]) return;
+    const float behind = w.cloud.points[i].z() - w.cloud.points[j].z();
+    if (behind > 0.0f && behind <= max_gap) borders.push_back({a - 1, b - 1, i});
+  };
+  const std::size_t width = w.cloud.width, n = w.cloud.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool right = i % width + 1 < width, below = i + width < n;
+    if (right) look(i, i + 1), look(i + 1, i);
+    if (below) look(i, i + width), look(i + width, i);
+  }
+  std::sort(borders.begin(), borders.end());
+  return borders;
+}
+
+// The distance from pixel i's point to the nearest point of part `body`
+// (label - 1) among the pixels within `reach` of it (metres, as the image shows
+// them at i's depth: reach f / z pixels each way).
+float nearest_in_image(const SegmentationWork& w, std::size_t i, std::uint32_t body, float reach, float focal_px) {
+  const Vec3& p = w.cloud.points[i];
+  const auto width = static_cast<long>(w.cloud.width), height = static_cast<long>(w.cloud.height);
+  const long r = static_cast<long>(std::ceil(reach * focal_px / p.z()));
+  const long y = static_cast<long>(i) / width, x = static_cast<long>(i) % width;
+  float nearest = std::numeric_limits<float>::infinity();
+  for (long v = std::max(0L, y - r); v <= std::min(height - 1, y + r); ++v) {
+    for (long u = std::max(0L, x - r); u <= std::min(width - 1, x + r); ++u) {
+      const auto j = static_cast<std::size_t>(v * width + u);
+      if (w.result.labels[j] == body + 1) nearest = std::min(nearest, (w.cloud.points[j] - p).norm());
+    }
+  }
+  return nearest;
+}
+
+// Whether the sensor sees the support under most of `members` (supervoxels):
+// the first point seen toward a supervoxel's foot on the plane is the
+// support's (no part's), at the foot's depth.
+bool support_seen_under(const SegmentationWork& w, const SeenDepth& seen, std::span<const std::uint32_t> members,
+                        const LccpConfig& config) {
+  const Plane& plane = w.support->plane;
+  std::size_t under = 0;
+  for (const std::uint32_t s : members) {
+    const Vec3& c = w.supervoxels.centroids[s];
+    const Vec3 foot = c - plane.distance(c) * plane.normal;
+    const std::optional<Seen> first = seen.at(foot);
+    const float margin = config.sensor.depth_tolerance_m(foot.z()) + config.voxels.voxel_size_m;
+    under += first && first->part == 0 && std::abs(first->depth - foot.z()) <= margin;
+  }
+  return 2 * under > members.size();
+}
+
 }  // namespace
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
@@ -176,6 +242,33 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     }
   }
   return pairs;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const SegmentationWork& w, const SeenDepth& seen,
+                                                                 const LccpConfig& config,
+                                                                 const std::vector<std::uint8_t>& loose,
+                                                                 const std::vector<std::uint8_t>& bodies) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> held;
+  if (!w.cloud.organized() || !w.support) return held;
+  const std::vector<Border> borders = borders_behind(w, loose, bodies, config.grouping.occluded_gap_m);
+  if (borders.empty()) return held;
+  const Grouped<std::uint32_t> members = supervoxels_of_parts(w);
+  const float reach = config.supervoxels.seed_size_m;
+  std::size_t most = 0;
+  for (std::size_t first = 0, last = 0; first < borders.size(); first = last) {
+    const std::uint32_t part = borders[first].part, body = borders[first].body;
+    float nearest = std::numeric_limits<float>::infinity();
+    for (last = first; last < borders.size() && borders[last].part == part && borders[last].body == body; ++last) {
+      nearest = std::min(nearest, nearest_in_image(w, borders[last].pixel, body, reach, config.sensor.focal_px));
+    }
+    if (!(nearest <= reach) || !support_seen_under(w, seen, members[part], config)) continue;
+    if (held.empty() || held.back().first != part) {
+      held.emplace_back(part, body), most = last - first;
+    } else if (last - first > most) {
+      held.back().second = body, most = last - first;
+    }
+  }
+  return held;
 }
 
 }  // namespace lccp::detail
