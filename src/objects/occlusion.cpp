@@ -175,38 +175,38 @@ std::vector<Border> borders_behind(const SegmentationWork& w, const std::vector<
                                    const std::vector<std::uint8_t>& bodies, float max_gap) {
   const Labels& labels = w.result.labels;
   std::vector<Border> borders;
-  const auto look = [&](std::size_t i, std::size_t j) {  // i's part behind j's body
-    const std::uint32_t a = labels[i], b = labels[j];
-    if (a == 0 || b == 0 || !loose[a - 1] || !bodies[b - 1]) return;
+  const auto look = [&](std::size_t i, std::size_t j) {  // i's loose part behind j's body
+    const std::uint32_t b = labels[j];
     const float behind = w.cloud.points[i].z() - w.cloud.points[j].z();
-    if (behind > 0.0f && behind <= max_gap) borders.push_back({a - 1, b - 1, i});
+    if (b != 0 && bodies[b - 1] && behind > 0.0f && behind <= max_gap) borders.push_back({labels[i] - 1, b - 1, i});
   };
   const std::size_t width = w.cloud.width, n = w.cloud.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const bool right = i % width + 1 < width, below = i + width < n;
-    if (right) look(i, i + 1), look(i + 1, i);
-    if (below) look(i, i + width), look(i + width, i);
+    if (labels[i] == 0 || !loose[labels[i] - 1]) continue;
+    if (i % width > 0) look(i, i - 1);
+    if (i % width + 1 < width) look(i, i + 1);
+    if (i >= width) look(i, i - width);
+    if (i + width < n) look(i, i + width);
   }
   std::sort(borders.begin(), borders.end());
   return borders;
 }
 
-// The distance from pixel i's point to the nearest point of part `body`
-// (label - 1) among the pixels within `reach` of it (metres, as the image shows
-// them at i's depth: reach f / z pixels each way).
-float nearest_in_image(const SegmentationWork& w, std::size_t i, std::uint32_t body, float reach, float focal_px) {
+// Whether a point of part `body` (label - 1) lies within `reach` of pixel i's
+// point, among the pixels within reach of it (metres, as the image shows them
+// at i's depth: reach f / z pixels each way).
+bool body_within_reach(const SegmentationWork& w, std::size_t i, std::uint32_t body, float reach, float focal_px) {
   const Vec3& p = w.cloud.points[i];
   const auto width = static_cast<long>(w.cloud.width), height = static_cast<long>(w.cloud.height);
   const long r = static_cast<long>(std::ceil(reach * focal_px / p.z()));
   const long y = static_cast<long>(i) / width, x = static_cast<long>(i) % width;
-  float nearest = std::numeric_limits<float>::infinity();
   for (long v = std::max(0L, y - r); v <= std::min(height - 1, y + r); ++v) {
     for (long u = std::max(0L, x - r); u <= std::min(width - 1, x + r); ++u) {
       const auto j = static_cast<std::size_t>(v * width + u);
-      if (w.result.labels[j] == body + 1) nearest = std::min(nearest, (w.cloud.points[j] - p).norm());
+      if (w.result.labels[j] == body + 1 && (w.cloud.points[j] - p).norm() <= reach) return true;
     }
   }
-  return nearest;
+  return false;
 }
 
 // Whether the sensor sees the support under most of `members` (supervoxels):
@@ -249,7 +249,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const Segmentat
                                                                  const std::vector<std::uint8_t>& loose,
                                                                  const std::vector<std::uint8_t>& bodies) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> held;
-  if (!w.cloud.organized() || !w.support) return held;
+  const bool any_loose = std::find(loose.begin(), loose.end(), 1) != loose.end();
+  if (!any_loose || !w.cloud.organized() || !w.support) return held;
   const std::vector<Border> borders = borders_behind(w, loose, bodies, config.grouping.occluded_gap_m);
   if (borders.empty()) return held;
   const Grouped<std::uint32_t> members = supervoxels_of_parts(w);
@@ -257,11 +258,12 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const Segmentat
   std::size_t most = 0;
   for (std::size_t first = 0, last = 0; first < borders.size(); first = last) {
     const std::uint32_t part = borders[first].part, body = borders[first].body;
-    float nearest = std::numeric_limits<float>::infinity();
+    bool near = false;  // each border pixel once (a pixel may border the body on two sides)
     for (last = first; last < borders.size() && borders[last].part == part && borders[last].body == body; ++last) {
-      nearest = std::min(nearest, nearest_in_image(w, borders[last].pixel, body, reach, config.sensor.focal_px));
+      const bool again = last > first && borders[last].pixel == borders[last - 1].pixel;
+      near = near || (!again && body_within_reach(w, borders[last].pixel, body, reach, config.sensor.focal_px));
     }
-    if (!(nearest <= reach) || !support_seen_under(w, seen, members[part], config)) continue;
+    if (!near || !support_seen_under(w, seen, members[part], config)) continue;
     if (held.empty() || held.back().first != part) {
       held.emplace_back(part, body), most = last - first;
     } else if (last - first > most) {
