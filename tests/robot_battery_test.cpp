@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -366,6 +367,44 @@ TEST(RobotHeldBehind, ABarOnHiddenPostsFarBehindABoxIsNotHeldByIt) {
     bar.push_back(test::box_solid({x, 0.06, 0}, {x + 0.005, 0.07, 0.04}, test::kFirstObjectLabel + 1));
   }
   expect_not_held_by_the_box(behind_a_box("a bar on hidden posts 5 cm behind a box", bar));
+}
+
+// --- what ends against a box is not continued behind it --------------------------------
+
+// A board 1 cm thick and 10 cm tall on the vertical plane through the line
+// y = 0.8 x - 5 cm: from the point of that line at x = start, `length` along
+// it (toward +x if positive).
+test::ContactSolid board_on_the_line(double start, double length, std::uint32_t label) {
+  test::ContactSolid board =
+      test::box_solid({std::min(0.0, length), -0.005, 0}, {std::max(0.0, length), 0.005, 0.10}, label);
+  board.rotation = test::yaw_matrix(std::atan(0.8) * 180 / std::numbers::pi);
+  board.position = {start, 0.8 * start - 0.05, 0};
+  return board;
+}
+
+// Box F (label 20), 6 cm wide, 5 cm deep and 12 cm tall, and two boards 15 cm
+// long on one plane through it: P (10) ends against F's front face, Q (30)
+// starts at its right face. Their faces continue one plane across F, and F
+// hides the plane between them; but each board meets F with no jump in
+// depth, so its end is no occlusion boundary: it ends against F
+// (detail::hidden_continuations). Two boards, not one that F hides.
+TEST(RobotHidden, TwoBoardsEndingAgainstABoxAreNotOneBoardBehindIt) {
+  const test::ContactLayout layout{"two boards ending against a box",
+                                   {test::box_solid({-0.03, -0.05, 0}, {0.03, 0, 0.12}, test::kSecondObjectLabel),
+                                    board_on_the_line(0, -0.15, test::kFirstObjectLabel),
+                                    board_on_the_line(0.03, 0.15, 30)},
+                                   Eigen::Vector3d(0, -0.02, 0.05)};
+  for (const test::ContactView& view : test::contact_views()) {
+    const test::ContactScene scene = test::contact_scene(layout, view);
+    const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
+    const std::uint32_t p = id_holding_most(seg, scene, test::kFirstObjectLabel);
+    const std::uint32_t f = id_holding_most(seg, scene, test::kSecondObjectLabel);
+    const std::uint32_t q = id_holding_most(seg, scene, 30);
+    std::printf("[robot] %s, %s: objects %u; P in %u, F in %u, Q in %u\n", layout.name.c_str(),
+                test::describe(view).c_str(), seg.object_count, p, f, q);
+    EXPECT_EQ(seg.object_count, 3u) << test::describe(view);
+    EXPECT_TRUE(p != q && p != f && q != f) << test::describe(view);
+  }
 }
 
 // --- the truth itself, against hand computations ---------------------------------------

@@ -80,12 +80,17 @@ namespace {
 // no part (the support's: the gap is the table), none lies behind p or
 // q themselves (they are then at different depths, one behind the other),
 // at least half are hidden by (or meet) another part, and at most half fall
-// where nothing was seen (the projector's shadow beside an occluder).
+// where nothing was seen (the projector's shadow beside an occluder). Where
+// the segment leaves p and where it reaches q, the third part seen is nearer
+// than it: each part's edge there is an occlusion boundary, a jump in depth.
+// A part that meets the third part at its edge (no jump) ends against it: a
+// board leaning on a box is not continued through the box.
 bool hidden_segment(const SeenDepth& seen, const Vec3& a, const Vec3& b, std::uint32_t p, std::uint32_t q,
                     const LccpConfig& config) {
   const float step = config.voxels.voxel_size_m;
   const int samples = std::max(2, static_cast<int>((b - a).norm() / step));
   int hidden = 0, empty = 0;
+  bool first_in_front = false, last_in_front = false;  // the first and the last third-part samples
   for (int k = 1; k < samples; ++k) {
     const Vec3 x = a + (b - a) * (static_cast<float>(k) / static_cast<float>(samples));
     const float margin = config.sensor.depth_tolerance_m(x.z()) + step;
@@ -96,9 +101,11 @@ bool hidden_segment(const SeenDepth& seen, const Vec3& a, const Vec3& b, std::ui
     }
     const bool own = first->part == p || first->part == q;
     if (first->part == 0 || first->depth > x.z() + margin || (own && first->depth < x.z() - margin)) return false;
-    hidden += !own;
+    if (own) continue;
+    last_in_front = first->depth < x.z() - margin;
+    if (hidden++ == 0) first_in_front = last_in_front;
   }
-  return 2 * hidden >= samples - 1 && 2 * empty <= samples - 1;
+  return 2 * hidden >= samples - 1 && 2 * empty <= samples - 1 && first_in_front && last_in_front;
 }
 
 // One plane continues from patch a to patch b: their normals within

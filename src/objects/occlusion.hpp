@@ -45,7 +45,9 @@ class SeenDepth {
 // over their distance, plus the sensor's depth tolerance), and whose
 // connecting segment the sensor cannot see: along it every direction from the
 // sensor (the origin) meets a nearer point or none, and at least one a nearer.
-// A segment it sees past (the table or the wall behind a gap) is not hidden.
+// A segment it sees past (the table or the wall behind a gap) is not hidden;
+// nor is one whose end meets a third part with no jump in depth (the part
+// ends against it: a board leaning on a box is not continued through it).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     const SegmentationWork& work, const SeenDepth& seen, const LccpConfig& config,
     const std::vector<std::uint8_t>& eligible, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent);
