@@ -193,9 +193,9 @@ struct LimitsConfig {
 // src/objects/grouping.cpp): with objects_from_parts, this level's segments
 // are the parts, and the objects are unions of them, grouped by how they rest
 // on the support plane. A part that touches the support (its lowest point
-// within contact_m of the plane), or that meets another part where that
-// part's surface faces up (it rests on an upward face: a box on a box), is the
-// body of an object of its own. A part that does neither hangs off the side
+// within contact_m of the plane), or that meets another part, below its own
+// top third, where that part's surface faces up (it rests on an upward face:
+// a box on a box), is the body of an object of its own. A part that does neither hangs off the side
 // of a neighbour (a handle, a spout, a knob) and joins the neighbour it shares
 // most supervoxel edges with; so does a part lying inside a neighbour's
 // footprint, below its top (a container's floor), a part that continues

@@ -156,13 +156,19 @@ bool sits_on(const PartShape& part, double height, const PartShape& other, doubl
   return height <= part.bottom + (part.top - part.bottom) / 3 && other_height >= other.top - (other.top - other.bottom) / 3;
 }
 
-// Whether `part` rests on `other` across a junction: it meets it on other's
-// upward face or sits on its top (sits_on). A part standing on the support
-// rests on nothing else.
+// Whether a junction lies in the highest third of `part`: part hangs from it,
+// whatever way the other side faces (the inside of a mug, seen through its
+// opening in pieces, meets the rim at the top of each piece; what rests on a
+// face bears on it from above).
+bool at_its_top(const PartShape& part, double height) { return height >= part.top - (part.top - part.bottom) / 3; }
+
+// Whether `part` rests on `other` across a junction: it meets other's upward
+// face below its own top (at_its_top), or sits on other's top (sits_on). A
+// part standing on the support rests on nothing else.
 bool rests_on(const PartShape& part, Footing feet, double height, const PartShape& other, double other_height,
               bool upward_face) {
   if (feet != Footing::off) return false;
-  return upward_face || sits_on(part, height, other, other_height);
+  return (upward_face && !at_its_top(part, height)) || sits_on(part, height, other, other_height);
 }
 
 std::vector<Side> sides_of(const std::vector<Junction>& all, const std::vector<PartShape>& shapes,
