@@ -401,6 +401,30 @@ TEST(RobotHidden, TwoBoardsEndingAgainstABoxAreNotOneBoardBehindIt) {
   }
 }
 
+// A box 8 cm tall (label 10) and one 20 cm tall (30), 10 cm wide each, side by
+// side 4 cm apart with their fronts in one plane, behind box F (20) of
+// behind_a_box, 12 cm tall, which hides the gap between them: their fronts
+// continue one plane behind F, but one face through the low box's top and
+// the tall box's would pass above F, where the sensor sees the table beyond
+// (detail::hidden_continuations). Two boxes, not one.
+TEST(RobotHidden, ATallAndALowBoxBehindOneNearerBoxAreTwoObjects) {
+  const test::ContactLayout layout =
+      behind_a_box("a tall and a low box behind a box",
+                   {test::box_solid({-0.12, 0.02, 0}, {-0.02, 0.06, 0.08}, test::kFirstObjectLabel),
+                    test::box_solid({0.02, 0.02, 0}, {0.12, 0.06, 0.20}, 30)});
+  for (const test::ContactView& view : test::contact_views()) {
+    const test::ContactScene scene = test::contact_scene(layout, view);
+    const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
+    const std::uint32_t low = id_holding_most(seg, scene, test::kFirstObjectLabel);
+    const std::uint32_t f = id_holding_most(seg, scene, test::kSecondObjectLabel);
+    const std::uint32_t tall = id_holding_most(seg, scene, 30);
+    std::printf("[robot] %s, %s: objects %u; low box in %u, F in %u, tall box in %u\n", layout.name.c_str(),
+                test::describe(view).c_str(), seg.object_count, low, f, tall);
+    EXPECT_EQ(seg.object_count, 3u) << test::describe(view);
+    EXPECT_TRUE(low != tall && low != f && tall != f) << test::describe(view);
+  }
+}
+
 // --- the truth itself, against hand computations ---------------------------------------
 
 // A box's footprint is the box: B of the first scene, 6 x 15 x 7 cm yawed by 30

@@ -75,6 +75,23 @@ long SeenDepth::index(const Vec3& p) const {
 
 namespace {
 
+// The samples of the segment from a to b, one per voxel size (at least one),
+// ends excluded: visit(x) for each while it returns true. Whether all did.
+template <class Visit>
+bool every_sample(const Vec3& a, const Vec3& b, const LccpConfig& config, Visit visit) {
+  const int samples = std::max(2, static_cast<int>((b - a).norm() / config.voxels.voxel_size_m));
+  for (int k = 1; k < samples; ++k) {
+    if (!visit(a + (b - a) * (static_cast<float>(k) / static_cast<float>(samples)))) return false;
+  }
+  return true;
+}
+
+// How far apart in depth a point seen and a sample may lie and still meet:
+// the sensor's depth tolerance plus a voxel.
+float meeting_margin(const Vec3& x, const LccpConfig& config) {
+  return config.sensor.depth_tolerance_m(x.z()) + config.voxels.voxel_size_m;
+}
+
 // Whether the sensor cannot see the segment from a (on part p) to b (on part
 // q) for a third object: no sample on it is seen past or falls on a point of
 // no part (the support's: the gap is the table), none lies behind p or
@@ -87,25 +104,29 @@ namespace {
 // board leaning on a box is not continued through the box.
 bool hidden_segment(const SeenDepth& seen, const Vec3& a, const Vec3& b, std::uint32_t p, std::uint32_t q,
                     const LccpConfig& config) {
-  const float step = config.voxels.voxel_size_m;
-  const int samples = std::max(2, static_cast<int>((b - a).norm() / step));
-  int hidden = 0, empty = 0;
+  int samples = 0, hidden = 0, empty = 0;
   bool first_in_front = false, last_in_front = false;  // the first and the last third-part samples
-  for (int k = 1; k < samples; ++k) {
-    const Vec3 x = a + (b - a) * (static_cast<float>(k) / static_cast<float>(samples));
-    const float margin = config.sensor.depth_tolerance_m(x.z()) + step;
+  const bool unseen = every_sample(a, b, config, [&](const Vec3& x) {
+    ++samples;
     const std::optional<Seen> first = seen.at(x);
-    if (!first) {
-      ++empty;
-      continue;
-    }
+    if (!first) return ++empty, true;
+    const float margin = meeting_margin(x, config);
     const bool own = first->part == p || first->part == q;
     if (first->part == 0 || first->depth > x.z() + margin || (own && first->depth < x.z() - margin)) return false;
-    if (own) continue;
+    if (own) return true;
     last_in_front = first->depth < x.z() - margin;
     if (hidden++ == 0) first_in_front = last_in_front;
-  }
-  return 2 * hidden >= samples - 1 && 2 * empty <= samples - 1 && first_in_front && last_in_front;
+    return true;
+  });
+  return unseen && 2 * hidden >= samples && 2 * empty <= samples && first_in_front && last_in_front;
+}
+
+// Whether the sensor sees past a sample of the segment from a to b.
+bool seen_past(const SeenDepth& seen, const Vec3& a, const Vec3& b, const LccpConfig& config) {
+  return !every_sample(a, b, config, [&](const Vec3& x) {
+    const std::optional<Seen> first = seen.at(x);
+    return !first || first->depth <= x.z() + meeting_margin(x, config);
+  });
 }
 
 // One plane continues from patch a to patch b: their normals within
@@ -156,15 +177,36 @@ void facing_pairs(const SegmentationWork& w, std::span<const std::uint32_t> a, s
   }
 }
 
-// Whether parts p and q (labels) continue each other behind a third object
-// across one of their facing pairs.
+// The highest of `members` (supervoxels) above or below supervoxel i: within
+// `reach` of it across the support's normal.
+Vec3 top_above(const SegmentationWork& w, std::span<const std::uint32_t> members, std::uint32_t i, float reach) {
+  const Plane& plane = w.support->plane;
+  const Vec3& at = w.supervoxels.centroids[i];
+  Vec3 top = at;
+  for (const std::uint32_t s : members) {
+    const Vec3& c = w.supervoxels.centroids[s];
+    const Vec3 d = c - at;
+    if ((d - d.dot(plane.normal) * plane.normal).norm() <= reach && plane.distance(c) > plane.distance(top)) top = c;
+  }
+  return top;
+}
+
+// Whether parts p and q (0-based; their supervoxels `members`) continue each
+// other behind a third object across one of their facing pairs: one plane
+// continues from patch to patch, the sensor cannot see the segment between
+// them (hidden_segment), and it sees past no sample of the segment between
+// the parts' tops above the two patches. One convex face (eq. (5) holds
+// between its patches) through both tops holds that segment: a tall box and a
+// low one beside it, their feet behind one nearer box, are two.
 bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const LccpConfig& config,
-                     const Pairs& facing, std::uint32_t p, std::uint32_t q) {
-  const Vec3 up = w.support ? w.support->plane.normal : Vec3::Zero();
+                     const Pairs& facing, const Grouped<std::uint32_t>& members, std::uint32_t p, std::uint32_t q) {
+  const Vec3 up = w.support->plane.normal;
+  const float reach = 2.0f * config.supervoxels.seed_size_m;
   for (const auto& [i, j] : facing) {
     const Patch a{w.supervoxels.centroids[i], w.supervoxels.normals[i]};
     const Patch b{w.supervoxels.centroids[j], w.supervoxels.normals[j]};
-    if (continues(a, b, config, up) && hidden_segment(seen, a.centroid, b.centroid, p, q, config)) return true;
+    if (!continues(a, b, config, up) || !hidden_segment(seen, a.centroid, b.centroid, p + 1, q + 1, config)) continue;
+    if (!seen_past(seen, top_above(w, members[p], i, reach), top_above(w, members[q], j, reach), config)) return true;
   }
   return false;
 }
@@ -238,14 +280,15 @@ bool support_seen_under(const SegmentationWork& w, const SeenDepth& seen, std::s
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     const SegmentationWork& w, const SeenDepth& seen, const LccpConfig& config,
     const std::vector<std::uint8_t>& eligible, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  if (!w.support) return pairs;
   const Grouped<std::uint32_t> members = supervoxels_of_parts(w);
   Pairs facing;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   for (std::uint32_t p = 0; p < members.size(); ++p) {
     for (std::uint32_t q = p + 1; q < members.size() && eligible[p]; ++q) {
       if (!eligible[q] || std::binary_search(adjacent.begin(), adjacent.end(), std::pair{p, q})) continue;
       facing_pairs(w, members[p], members[q], config, facing);
-      if (continue_hidden(w, seen, config, facing, p + 1, q + 1)) pairs.emplace_back(p, q);
+      if (continue_hidden(w, seen, config, facing, members, p, q)) pairs.emplace_back(p, q);
     }
   }
   return pairs;

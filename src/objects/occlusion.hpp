@@ -48,6 +48,9 @@ class SeenDepth {
 // A segment it sees past (the table or the wall behind a gap) is not hidden;
 // nor is one whose end meets a third part with no jump in depth (the part
 // ends against it: a board leaning on a box is not continued through it).
+// And the sensor sees past no sample of the segment between the two parts'
+// tops above those supervoxels: the one convex face they would be holds it.
+// Needs the support plane (none: no pairs).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     const SegmentationWork& work, const SeenDepth& seen, const LccpConfig& config,
     const std::vector<std::uint8_t>& eligible, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent);
