@@ -22,6 +22,7 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -376,6 +377,22 @@ test::ContactSolid board_on_the_line(double start, double length, std::uint32_t 
   return board;
 }
 
+// In every contact view: three objects, the layout's solids 10, 20 and 30
+// (`names`, for the printed line) each mostly in one of them, no two in the same.
+void expect_three_objects_apart(const test::ContactLayout& layout, const std::array<const char*, 3>& names) {
+  constexpr std::array<std::uint32_t, 3> kLabels{10, 20, 30};
+  for (const test::ContactView& view : test::contact_views()) {
+    const test::ContactScene scene = test::contact_scene(layout, view);
+    const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
+    std::array<std::uint32_t, 3> id{};
+    for (std::size_t k = 0; k < 3; ++k) id[k] = id_holding_most(seg, scene, kLabels[k]);
+    std::printf("[robot] %s, %s: objects %u; %s in %u, %s in %u, %s in %u\n", layout.name.c_str(),
+                test::describe(view).c_str(), seg.object_count, names[0], id[0], names[1], id[1], names[2], id[2]);
+    EXPECT_EQ(seg.object_count, 3u) << test::describe(view);
+    EXPECT_TRUE(id[0] != id[1] && id[0] != id[2] && id[1] != id[2]) << test::describe(view);
+  }
+}
+
 // Box F (label 20), 6 cm wide, 5 cm deep and 12 cm tall, and two boards 15 cm
 // long on one plane through it: P (10) ends against F's front face, Q (30)
 // starts at its right face. Their faces continue one plane across F, and F
@@ -388,17 +405,7 @@ TEST(RobotHidden, TwoBoardsEndingAgainstABoxAreNotOneBoardBehindIt) {
                                     board_on_the_line(0, -0.15, test::kFirstObjectLabel),
                                     board_on_the_line(0.03, 0.15, 30)},
                                    Eigen::Vector3d(0, -0.02, 0.05)};
-  for (const test::ContactView& view : test::contact_views()) {
-    const test::ContactScene scene = test::contact_scene(layout, view);
-    const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
-    const std::uint32_t p = id_holding_most(seg, scene, test::kFirstObjectLabel);
-    const std::uint32_t f = id_holding_most(seg, scene, test::kSecondObjectLabel);
-    const std::uint32_t q = id_holding_most(seg, scene, 30);
-    std::printf("[robot] %s, %s: objects %u; P in %u, F in %u, Q in %u\n", layout.name.c_str(),
-                test::describe(view).c_str(), seg.object_count, p, f, q);
-    EXPECT_EQ(seg.object_count, 3u) << test::describe(view);
-    EXPECT_TRUE(p != q && p != f && q != f) << test::describe(view);
-  }
+  expect_three_objects_apart(layout, {"P", "F", "Q"});
 }
 
 // A box 8 cm tall (label 10) and one 20 cm tall (30), 10 cm wide each, side by
@@ -412,17 +419,7 @@ TEST(RobotHidden, ATallAndALowBoxBehindOneNearerBoxAreTwoObjects) {
       behind_a_box("a tall and a low box behind a box",
                    {test::box_solid({-0.12, 0.02, 0}, {-0.02, 0.06, 0.08}, test::kFirstObjectLabel),
                     test::box_solid({0.02, 0.02, 0}, {0.12, 0.06, 0.20}, 30)});
-  for (const test::ContactView& view : test::contact_views()) {
-    const test::ContactScene scene = test::contact_scene(layout, view);
-    const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
-    const std::uint32_t low = id_holding_most(seg, scene, test::kFirstObjectLabel);
-    const std::uint32_t f = id_holding_most(seg, scene, test::kSecondObjectLabel);
-    const std::uint32_t tall = id_holding_most(seg, scene, 30);
-    std::printf("[robot] %s, %s: objects %u; low box in %u, F in %u, tall box in %u\n", layout.name.c_str(),
-                test::describe(view).c_str(), seg.object_count, low, f, tall);
-    EXPECT_EQ(seg.object_count, 3u) << test::describe(view);
-    EXPECT_TRUE(low != tall && low != f && tall != f) << test::describe(view);
-  }
+  expect_three_objects_apart(layout, {"low box", "F", "tall box"});
 }
 
 // --- the truth itself, against hand computations ---------------------------------------
