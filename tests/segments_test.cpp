@@ -186,6 +186,23 @@ TEST(MergeSmallSegments, MergedSegmentStillSmallMergesAgain) {
   EXPECT_EQ(canonical(s2), (std::vector<std::uint32_t>{0, 0, 0, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3}));
 }
 
+TEST(MergeSmallSegments, NoSegmentIsNeitherMergedNorMergedInto) {
+  // The support's supervoxels (kNoSegment, 6 of them) touch {8}; n_filter 2: {8} joins
+  // its largest neighbour that is a segment, the 5 (not the 6 support supervoxels), and
+  // the support's supervoxels stay as they are, though {8} was merged into nothing of them.
+  SmallBetweenTwo g;
+  for (int i = 0; i < 6; ++i) g.seg.push_back(kNoSegment);
+  for (auto e : chain_edges(9, 14)) g.edges.push_back(e);
+  g.edges.push_back({8, 9});
+  sort_edges(g.edges);
+  merge_small_segments(g.seg, g.edges, 2);
+  EXPECT_EQ(g.seg[8], g.seg[0]);
+  for (std::size_t sv = 9; sv < g.seg.size(); ++sv) EXPECT_EQ(g.seg[sv], kNoSegment);
+  // relabel_by_size: the support's supervoxels get 0, the segments 1 (6 supervoxels) and 2.
+  EXPECT_EQ(relabel_by_size(g.seg), 2u);
+  EXPECT_EQ(g.seg, (std::vector<std::uint32_t>{1, 1, 1, 1, 1, 2, 2, 2, 1, 0, 0, 0, 0, 0, 0}));
+}
+
 TEST(MergeSmallSegments, LongChainOfSingletonsCollapses) {
   // 0 - 1 - 2 - ... - 9, every supervoxel its own segment, n_filter 3: merging must be
   // repeated until no small segment with a neighbour is left -> with 10 supervoxels in a

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include "lccp/core/lccp.hpp"
 #include "lccp/core/support_plane.hpp"
 #include "test_clouds.hpp"
 
@@ -353,6 +354,54 @@ TEST(SupportPlane, ANoiseScaledBandLeavesObjectsTheirFoot) {
   // Uniform noise in +-1 mm: median distance 0.5 mm, robust sigma 1.4826 * 0.5 mm.
   EXPECT_NEAR(band->noise_m, 0.00074f, 0.00015f);
   EXPECT_NEAR(fixed->noise_m, band->noise_m, 1e-6f);  // the same plane, the same noise
+}
+
+}  // namespace
+}  // namespace lccp
+
+namespace lccp {
+namespace {
+
+// Points of `part` from `low` to `high` over the table (metres), and those of
+// them the segmentation labels (not the support's, not left out).
+std::pair<std::size_t, std::size_t> labelled_between(const Scene& s, const SegmentationWork& w, Part part, double low,
+                                                     double high) {
+  std::size_t all = 0, labelled = 0;
+  for (std::size_t i = 0; i < s.part.size(); ++i) {
+    const double height = s.table_normal.dot(s.cloud.points[i].cast<double>()) + s.table_d;
+    if (s.part[i] != part || height < low || height >= high) continue;
+    all += 1, labelled += w.result.labels[i] != 0;
+  }
+  return {all, labelled};
+}
+
+// support_by_patches: a box's band points are segmented with it, and the
+// patches decide which are the support's. A table with +-3 mm of noise has a
+// band some 7 mm wide (3 robust sigmas): it takes each side's row of points
+// 5 mm above the table. With the patches deciding, most of that row stays the
+// box's (its side's plane fits it better than the table's), the box keeps
+// its points higher up, and the table stays the support.
+TEST(SupportPlane, PatchesDecideWhichBandPointsAreTheSupports) {
+  SceneBuilder b(kEye);
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
+  b.add(test::centered_rect({0, 0, 0}, X, 1.0, Y, 0.8), 0.005, 0.003, kTablePoint);
+  b.add_box(0.0, 0.0, 0.15, 0.12, 0.005);
+  const Scene s = b.done();
+  LccpConfig config;
+  config.support = table_config();
+  config.support.noise_sigmas = 3.0f;
+  config.support.decided_by_patches = true;
+  const SegmentationWork by_patches = LccpSegmenter(config).run(s.cloud);
+  config.support.decided_by_patches = false;
+  const SegmentationWork by_band = LccpSegmenter(config).run(s.cloud);
+  ASSERT_TRUE(by_patches.support && by_band.support);
+  const auto [row, row_kept] = labelled_between(s, by_patches, kBoxSide, 0.004, 0.006);
+  ASSERT_GT(row, 0u);
+  EXPECT_EQ(labelled_between(s, by_band, kBoxSide, 0.004, 0.006).second, 0u);
+  EXPECT_GT(2 * row_kept, row);
+  const auto [higher, higher_kept] = labelled_between(s, by_patches, kBoxSide, 0.006, 1.0);
+  EXPECT_GE(static_cast<double>(higher_kept), 0.99 * static_cast<double>(higher));
+  EXPECT_GE(marked(*by_patches.support, s, kTablePoint), 0.99 * static_cast<double>(count_part(s, kTablePoint)));
 }
 
 }  // namespace

@@ -139,6 +139,16 @@ struct SupportPlaneConfig {
   // the sensor's depth step (its rounding), never more than distance_m.
   // 3: a Gaussian's 99.7 %, and a uniform rounding error's whole width.
   float noise_sigmas = 0.0f;
+  // Beyond the paper: the band's points near other points are segmented with
+  // them, and the patches decide. false: every band point is left out (the
+  // paper's removal). true: a band point is left out only when no point off the
+  // band lies in its cell or a neighbouring one of a grid of distance_m cells
+  // (the open table); the others are segmented with the objects, and after the
+  // filter (A.4) the support is the supervoxels most of whose points are in the
+  // band. A band point of any other supervoxel stays with it unless the support's
+  // plane fits it at least as well as its supervoxel's plane: an object keeps its
+  // foot, a neighbourhood planar with the plane goes to the plane.
+  bool decided_by_patches = false;
 };
 
 // The region of interest: an axis-aligned box in the cloud's frame (metres).

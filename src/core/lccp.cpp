@@ -1,5 +1,8 @@
 #include "lccp/core/lccp.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
 #include "lccp/core/normals.hpp"
@@ -11,12 +14,15 @@
 namespace lccp {
 namespace {
 
+// Every point the label of its voxel's supervoxel; 0 for a point on the support.
 Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
-                    const std::vector<std::uint32_t>& segment_of_supervoxel) {
+                    const std::vector<std::uint32_t>& segment_of_supervoxel, const std::optional<SupportPlane>& support) {
   Labels labels(grid.voxel_of_point.size(), 0);
   detail::parallel_for_each_index(labels.size(), [&](std::size_t i) {
     const std::uint32_t v = grid.voxel_of_point[i];
-    if (v != kNoVoxel) labels[i] = segment_of_supervoxel[supervoxels.supervoxel_of_voxel[v]];
+    if (v != kNoVoxel && !(support && support->on_plane[i])) {
+      labels[i] = segment_of_supervoxel[supervoxels.supervoxel_of_voxel[v]];
+    }
   });
   return labels;
 }
@@ -37,12 +43,92 @@ void keep_region(SegmentationWork& w, const RegionConfig& region) {
   });
 }
 
-// The support plane's points are left out of the segmentation (Sec. III.C).
-void remove_support(SegmentationWork& w, const SupportPlaneConfig& config, const SensorConfig& sensor) {
-  if (!config.enabled) return;
-  w.support = find_support_plane(w.cloud, config, w.skip, sensor);
+// Per point: 1 if a point off the support's band lies in its cell or a
+// neighbouring one of a grid of distance_m cells (the voxel grid's cells and
+// 26-neighbourhood, in the config's binning).
+std::vector<std::uint8_t> near_other_points(const SegmentationWork& w, const LccpConfig& config) {
+  VoxelConfig cells = config.voxels;
+  cells.voxel_size_m = config.support.distance_m;
+  const VoxelGrid grid = voxelize(w.cloud, cells, config.sensor, config.limits, w.skip);
+  const std::vector<std::uint8_t>& on_plane = w.support->on_plane;
+  std::vector<std::uint8_t> holds_other(grid.size(), 0), near(grid.size(), 0);
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
+    const auto off = [&](std::uint32_t i) { return on_plane[i] == 0; };
+    holds_other[v] = std::any_of(grid.points.begin(v), grid.points.end(v), off) ? 1 : 0;
+  });
+  detail::parallel_for_each_index(grid.size(), [&](std::size_t v) {
+    const auto holds = [&](std::uint32_t u) { return holds_other[u] != 0; };
+    near[v] = holds_other[v] || std::any_of(grid.neighbors.begin(v), grid.neighbors.end(v), holds) ? 1 : 0;
+  });
+  std::vector<std::uint8_t> out(w.cloud.size(), 0);
+  detail::parallel_for_each_index(out.size(), [&](std::size_t i) {
+    const std::uint32_t v = grid.voxel_of_point[i];
+    out[i] = v != kNoVoxel ? near[v] : 0;
+  });
+  return out;
+}
+
+// The support plane's points are left out of the segmentation (Sec. III.C);
+// with decided_by_patches only those away from any other point
+// (SupportPlaneConfig), the others are left to settle_support.
+void remove_support(SegmentationWork& w, const LccpConfig& config) {
+  if (!config.support.enabled) return;
+  w.support = find_support_plane(w.cloud, config.support, w.skip, config.sensor);
   if (!w.support) return;
-  leave_out_points(w, [&](std::size_t i) { return w.support->on_plane[i] != 0; });
+  const std::vector<std::uint8_t>& on_plane = w.support->on_plane;
+  if (!config.support.decided_by_patches) return leave_out_points(w, [&](std::size_t i) { return on_plane[i] != 0; });
+  const std::vector<std::uint8_t> near = near_other_points(w, config);
+  leave_out_points(w, [&](std::size_t i) { return on_plane[i] != 0 && near[i] == 0; });
+}
+
+// The supervoxel of point i (kNoVoxel: none).
+std::uint32_t supervoxel_of_point(const SegmentationWork& w, std::size_t i) {
+  const std::uint32_t v = w.grid.voxel_of_point[i];
+  return v == kNoVoxel ? kNoVoxel : w.supervoxels.supervoxel_of_voxel[v];
+}
+
+// Per supervoxel: 1 if most of its points are flagged.
+std::vector<std::uint8_t> mostly_flagged(const SegmentationWork& w, const std::vector<std::uint8_t>& flag) {
+  std::vector<std::int32_t> balance(w.supervoxels.size(), 0);  // flagged points minus the others
+  for (std::size_t i = 0; i < flag.size(); ++i) {
+    const std::uint32_t s = supervoxel_of_point(w, i);
+    if (s != kNoVoxel) balance[s] += flag[i] ? 1 : -1;
+  }
+  std::vector<std::uint8_t> most(balance.size(), 0);
+  for (std::size_t s = 0; s < balance.size(); ++s) most[s] = balance[s] > 0 ? 1 : 0;
+  return most;
+}
+
+// A point on the band in a supervoxel that is not the support's: the support's
+// if the support's plane fits it at least as well as its supervoxel's plane.
+bool fits_support(const SegmentationWork& w, std::size_t i) {
+  const std::uint32_t s = supervoxel_of_point(w, i);
+  if (s == kNoVoxel) return true;  // left out: the open table
+  const Eigen::Vector3f& p = w.cloud.points[i];
+  const float to_patch = w.supervoxels.normals[s].dot(p - w.supervoxels.centroids[s]);
+  return std::abs(w.support->plane.distance(p)) <= std::abs(to_patch);
+}
+
+// decided_by_patches (SupportPlaneConfig), after the components: the
+// supervoxels most of whose points are on the band are the support's
+// (kNoSegment), and so are their points within distance_m of the plane (the
+// others are no segment's: label 0); a band point elsewhere is the support's if
+// the plane fits it as well as its patch (fits_support).
+void settle_support(SegmentationWork& w, const SupportPlaneConfig& config) {
+  if (!w.support || !config.decided_by_patches) return;
+  std::vector<std::uint8_t>& on_plane = w.support->on_plane;
+  std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
+  const std::vector<std::uint8_t> support = mostly_flagged(w, on_plane);
+  for (std::size_t s = 0; s < segment.size(); ++s) segment[s] = support[s] ? kNoSegment : segment[s];
+  detail::parallel_for_each_index(on_plane.size(), [&](std::size_t i) {
+    const std::uint32_t s = supervoxel_of_point(w, i);
+    if (s != kNoVoxel && support[s]) {
+      on_plane[i] = std::abs(w.support->plane.distance(w.cloud.points[i])) <= config.distance_m;
+    } else {
+      on_plane[i] = on_plane[i] && fits_support(w, i);
+    }
+  });
+  w.support->inliers = static_cast<std::uint64_t>(std::count(on_plane.begin(), on_plane.end(), 1));
 }
 
 }  // namespace
@@ -75,7 +161,7 @@ void LccpSegmenter::segment(SegmentationWork& w) const {
 void LccpSegmenter::leave_out(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::support);
   keep_region(w, config_.region);
-  remove_support(w, config_.support, config_.sensor);
+  remove_support(w, config_);
 }
 
 void LccpSegmenter::build_voxels(SegmentationWork& w) const {
@@ -120,9 +206,10 @@ void LccpSegmenter::merge_convex(SegmentationWork& w) const {
 // every point labelled through its voxel's supervoxel.
 void LccpSegmenter::filter_small(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::filter);
+  settle_support(w, config_.support);
   merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels);
   w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
-  w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel);
+  w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel, w.support);
   w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
   w.result.supervoxel_count = static_cast<std::uint32_t>(w.supervoxels.size());
 }

@@ -115,7 +115,7 @@ std::optional<std::uint32_t> largest_neighbor(SegmentGraph& g, std::uint32_t nod
   for (std::uint32_t row = node; row != SegmentGraph::kEnd; row = g.next_row[row]) {
     for (std::uint32_t k = g.neighbors.offsets[row]; k < g.neighbors.offsets[row + 1]; ++k) {
       const std::uint32_t n = g.neighbors.items[k] = g.alive(g.neighbors.items[k]);
-      if (n == node) continue;
+      if (n == node || g.nodes.ids[n] == kNoSegment) continue;
       if (!best || std::tie(g.size[*best], n) < std::tie(g.size[n], *best)) best = n;
     }
   }
@@ -126,7 +126,7 @@ std::optional<std::uint32_t> largest_neighbor(SegmentGraph& g, std::uint32_t nod
 bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter) {
   std::vector<std::uint32_t> small;
   for (std::uint32_t node = 0; node < g.size.size(); ++node) {
-    if (g.alive(node) == node && g.size[node] <= n_filter) small.push_back(node);
+    if (g.alive(node) == node && g.size[node] <= n_filter && g.nodes.ids[node] != kNoSegment) small.push_back(node);
   }
   std::stable_sort(small.begin(), small.end(), [&](std::uint32_t a, std::uint32_t b) { return g.size[a] < g.size[b]; });
   bool merged = false;
@@ -158,8 +158,11 @@ std::uint32_t relabel_by_size(std::vector<std::uint32_t>& segment_of_supervoxel)
   const SegmentNodes nodes = segment_nodes(segment_of_supervoxel);
   const CompressedRows& members = nodes.members;
   // Largest first, ties by smallest member (the first of its ascending members).
-  std::vector<std::uint32_t> order(members.rows());
-  std::iota(order.begin(), order.end(), 0u);
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t node = 0; node < members.rows(); ++node) {
+    if (nodes.ids[node] != kNoSegment) order.push_back(node);
+    else for (const std::uint32_t* sv = members.begin(node); sv != members.end(node); ++sv) segment_of_supervoxel[*sv] = 0;
+  }
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     return std::tuple(members.count(b), *members.begin(a)) < std::tuple(members.count(a), *members.begin(b));
   });

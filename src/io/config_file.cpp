@@ -149,6 +149,8 @@ std::vector<Key> scene_keys() {
       count_key("support_iterations", [](auto& c) -> auto& { return c.support.iterations; }, "RANSAC hypotheses"),
       float_key("support_noise_sigmas", [](auto& c) -> auto& { return c.support.noise_sigmas; },
                 "on the plane within this many of its inliers' robust sigmas, scaled as z^2 (0: support_distance_m)"),
+      bool_key("support_by_patches", [](auto& c) -> auto& { return c.support.decided_by_patches; },
+               "band points near other points are segmented with them; the patches decide (true/false)"),
       bool_key("objects_from_parts", [](auto& c) -> auto& { return c.grouping.objects_from_parts; },
                "segments are parts; objects are their unions by support (true/false)"),
       float_key("object_contact_m", [](auto& c) -> auto& { return c.grouping.contact_m; },

@@ -29,7 +29,7 @@ struct SegmentationWork {
 
   CloudView cloud;
   std::vector<std::uint8_t> skip;                      // per point, 1: left out (empty: none); set by the caller
-  std::optional<SupportPlane> support;                 // support (its points join `skip`)
+  std::optional<SupportPlane> support;                 // support (its points join `skip`; by patches: some, and filter settles the rest)
   VoxelGrid grid;                                      // voxelize
   VoxelNormals normals;                                // normals, per voxel
   std::vector<std::uint32_t> seeds;                    // seeds, voxel indices

@@ -7,6 +7,11 @@
 
 namespace lccp {
 
+// The id of supervoxels in no segment (the support's, SupportPlaneConfig::
+// decided_by_patches): the filter neither merges them nor into them, and
+// relabel_by_size gives them 0.
+inline constexpr std::uint32_t kNoSegment = 0xffffffffu;
+
 // Segment id per supervoxel: components over the edges flagged convex,
 // computed with the concurrent union-find. Ids are the smallest supervoxel
 // index of each component (not dense).
@@ -14,13 +19,14 @@ std::vector<std::uint32_t> convex_components(std::size_t supervoxel_count, const
                                              const std::vector<std::uint8_t>& convex);
 
 // Merges every segment of <= n_filter supervoxels into its largest neighbouring
-// segment (ties: smaller id), repeatedly, until no such segment has a neighbour.
+// segment (ties: smaller id), repeatedly, until no such segment has a neighbour
+// (kNoSegment is none).
 // Small segments are visited smallest first, then by id, so the result is deterministic.
 void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, const std::vector<Edge>& edges,
                           std::uint32_t n_filter);
 
 // Renumbers segments densely 1..K: largest segment (in supervoxels) first,
-// ties by smallest member supervoxel. Returns K.
+// ties by smallest member supervoxel; kNoSegment becomes 0. Returns K.
 std::uint32_t relabel_by_size(std::vector<std::uint32_t>& segment_of_supervoxel);
 
 }  // namespace lccp
