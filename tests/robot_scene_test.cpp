@@ -4,7 +4,8 @@
 // handle its own part):
 // - every object's best-matching segment keeps its id in >= 97 % of the pairs of
 //   consecutive frames in which the object is visible;
-// - how often the handle is its own part of the mug object with its centroid
+// - how often the handle is its own part of the mug object (its pieces one part:
+//   PartGroups::part) with its centroid
 //   within 1 cm of the true handle's, in the frames where >= 200 handle points
 //   are visible, and where it is when it is not (in the body's part, or in an
 //   object apart from the mug's). The robot issue asks for 95 % and 90 %; that
@@ -16,6 +17,7 @@
 // process; each prints its figures (perf/RESULTS.md quotes them).
 #include <cstdio>
 #include <filesystem>
+#include <algorithm>
 #include <map>
 #include <optional>
 
@@ -215,6 +217,33 @@ TEST(RobotScene, AHandleWhoseEndsTheMugHidesIsAPartOfTheMug) {
   const std::uint32_t mug = id_of_label(seg.objects, frame.labels, body, seg.support_id);
   EXPECT_NE(mug, 0u);
   EXPECT_EQ(id_of_label(seg.objects, frame.labels, handle, seg.support_id), mug);
+}
+
+// Frame 12 of the scene: P1 cuts the mug's handle in two, the upper half
+// resting on the lower one, both hanging off the body (a third of the handle's
+// points, where it meets the body, go to the body's part). Pieces off the
+// support on no body of their own that meet in one object are one part
+// (group_parts, PartGroups::part): the handle's points outside the body's
+// part are in one part, of the mug object.
+TEST(RobotScene, AHandleCutInTwoIsOnePartOfTheMug) {
+  const synthetic::TabletopScene scene;
+  const synthetic::SyntheticFrame frame = scene.render(12);
+  const SceneSegmentation seg = robot_segmenter().segment(back_project(frame.depth));
+  const std::uint32_t handle = object_label(synthetic::kMugObject, synthetic::kHandlePart);
+  const std::uint32_t body = object_label(synthetic::kMugObject);
+  const std::uint32_t body_part = id_of_label(seg.labels, frame.labels, body, seg.support_id);
+  std::map<std::uint32_t, std::size_t> pieces;  // handle points per part, the body's part left out
+  std::size_t outside_body = 0;
+  for (std::size_t i = 0; i < frame.labels.size(); ++i) {
+    if (frame.labels[i] != handle || seg.labels[i] == body_part) continue;
+    ++outside_body, ++pieces[seg.labels[i]];
+  }
+  ASSERT_GE(outside_body, 100u);
+  const auto largest = std::max_element(pieces.begin(), pieces.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; });
+  EXPECT_GE(largest->second, 0.95 * static_cast<double>(outside_body));
+  EXPECT_EQ(id_of_label(seg.objects, frame.labels, handle, seg.support_id),
+            id_of_label(seg.objects, frame.labels, body, seg.support_id));
 }
 
 TEST(RobotScene, BundledRecordingIdsStayStable) {

@@ -211,7 +211,8 @@ struct LimitsConfig {
 // footprint, below its top (a container's floor), a part that continues
 // another behind a nearer object (occluded_gap_m), and a part hanging in the
 // air beside a nearer body it vanishes behind, within a seed spacing of it
-// (a handle whose ends the mug hides). The paper's object level
+// (a handle whose ends the mug hides). Parts with no body of their own that
+// meet within one object are one part (a handle cut in two). The paper's object level
 // (beta_thresh 180 deg after plane removal, config/paper-robot.yaml) joins
 // every pair of touching objects. Needs the support plane.
 struct GroupingConfig {

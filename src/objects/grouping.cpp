@@ -265,6 +265,23 @@ void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shape
   }
 }
 
+// Per part the smallest part it is one with: parts off the support on no body
+// of their own (neither standing nor resting on one) that meet each other in
+// one object are pieces of one part (a handle the segmentation cut in two,
+// one half resting on the other; the inside of a mug seen in pieces).
+std::vector<std::uint32_t> one_part(ConcurrentUnionFind& sets, const std::vector<std::uint8_t>& bodies,
+                                    const std::vector<Footing>& feet, const std::vector<Side>& sides) {
+  const auto count = static_cast<std::uint32_t>(feet.size());
+  const auto piece = [&](std::uint32_t k) { return !bodies[k] && feet[k] == Footing::off; };
+  ConcurrentUnionFind pieces(count);
+  for (const Side& s : sides) {
+    if (piece(s.part) && piece(s.other) && sets.find(s.part) == sets.find(s.other)) pieces.unite(s.part, s.other);
+  }
+  std::vector<std::uint32_t> part(count);
+  for (std::uint32_t k = 0; k < count; ++k) part[k] = pieces.find(k);
+  return part;
+}
+
 // Objects: the sets, numbered by decreasing points (ties: the set whose
 // smallest part is smaller first); a flat part alone is no object (0).
 std::vector<std::uint32_t> number_objects(ConcurrentUnionFind& sets, const std::vector<PartShape>& shapes,
@@ -312,12 +329,12 @@ void join_held_behind(ConcurrentUnionFind& sets, const SegmentationWork& w, cons
   for (const auto& [part, body] : detail::held_behind(w, seen, config, loose, bodies)) sets.unite(part, body);
 }
 
-std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
+PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   const GroupingConfig& config = lccp.grouping;
   const std::uint32_t count = w.result.segment_count;
   std::vector<std::uint32_t> own(count);
   std::iota(own.begin(), own.end(), 1u);
-  if (!w.support || count == 0) return own;
+  if (!w.support || count == 0) return {own, own};
   const Plane& plane = w.support->plane;
   const double cos_upward = std::cos(config.upward_max_tilt_deg * std::numbers::pi / 180.0);
   const std::vector<PartShape> shapes = part_shapes(w, plane);
@@ -333,7 +350,9 @@ std::vector<std::uint32_t> group_parts(const SegmentationWork& w, const LccpConf
   hang_clusters(sets, bodies, feet, sides);
   if (seen) join_held_behind(sets, w, *seen, lccp, bodies, feet);
   join_insides(sets, shapes, hulls, sides, config);
-  return number_objects(sets, shapes, feet);
+  std::vector<std::uint32_t> part = one_part(sets, bodies, feet, sides);
+  for (std::uint32_t& p : part) p += 1;  // labels
+  return {number_objects(sets, shapes, feet), std::move(part)};
 }
 
 }  // namespace lccp

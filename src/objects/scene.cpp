@@ -193,17 +193,19 @@ void SceneSegmenter::partition_objects(SceneWork& w) const {
 // Stage 9 with objects_from_parts: the first level's segments are the parts;
 // the objects they group into (group_parts) take over the work's labels, the
 // objects of fewer than min_object_points points dropped, and the parts keep
-// theirs in w.grouped, renumbered object by object.
+// theirs in w.grouped, the pieces of one part (PartGroups::part) as one,
+// renumbered object by object.
 void SceneSegmenter::group_objects(SceneWork& w) const {
   SegmentationWork& first = w.objects;
-  std::vector<std::uint32_t> object = group_parts(first, config_.objects);
-  object.insert(object.begin(), 0u);  // indexed by part label
-  const Labels part_labels = std::exchange(first.result.labels, mapped(first.result.labels, object));
+  auto [object, one_part] = group_parts(first, config_.objects);
+  object.insert(object.begin(), 0u), one_part.insert(one_part.begin(), 0u);  // indexed by part label
+  const Labels part_labels = mapped(std::exchange(first.result.labels, mapped(first.result.labels, object)), one_part);
   const std::vector<std::uint32_t> part_supervoxels =
-      std::exchange(first.segment_of_supervoxel, mapped(first.segment_of_supervoxel, object));
+      mapped(std::exchange(first.segment_of_supervoxel, mapped(first.segment_of_supervoxel, object)), one_part);
   first.result.segment_count = object.size() > 1 ? *std::max_element(object.begin(), object.end()) : 0;
   const std::vector<std::uint32_t> renamed = drop_small_objects(first, config_.objects.filter.min_object_points);
   object = mapped(std::move(object), renamed);
+  for (std::size_t k = 1; k < object.size(); ++k) object[k] = one_part[k] == k ? object[k] : 0;  // pieces of one part
   object.erase(object.begin());
   auto [map, offsets] = parts_by_object(object, first.result.segment_count);
   w.grouped = GroupedParts{mapped(part_labels, map), mapped(part_supervoxels, map), std::move(offsets)};
