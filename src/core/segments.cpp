@@ -160,8 +160,11 @@ std::uint32_t relabel_by_size(std::vector<std::uint32_t>& segment_of_supervoxel)
   // Largest first, ties by smallest member (the first of its ascending members).
   std::vector<std::uint32_t> order;
   for (std::uint32_t node = 0; node < members.rows(); ++node) {
-    if (nodes.ids[node] != kNoSegment) order.push_back(node);
-    else for (const std::uint32_t* sv = members.begin(node); sv != members.end(node); ++sv) segment_of_supervoxel[*sv] = 0;
+    if (nodes.ids[node] != kNoSegment) {
+      order.push_back(node);
+      continue;
+    }
+    for (const std::uint32_t* sv = members.begin(node); sv != members.end(node); ++sv) segment_of_supervoxel[*sv] = 0;
   }
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     return std::tuple(members.count(b), *members.begin(a)) < std::tuple(members.count(a), *members.begin(b));

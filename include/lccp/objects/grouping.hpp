@@ -18,9 +18,9 @@ struct PartGroups {
   // band left) and joins no object. Its points are then unassigned, as a
   // dropped object's.
   std::vector<std::uint32_t> object;
-  // the part label it is one part with: the smallest of the pieces that hang
-  // off each other and off one body (a handle the segmentation cut in two),
-  // itself otherwise.
+  // the part label it is one part with: the smallest of the pieces with no
+  // body of their own (neither standing nor resting on one) that meet within
+  // one object (a handle the segmentation cut in two), itself otherwise.
   std::vector<std::uint32_t> part;
 };
 
