@@ -201,17 +201,29 @@ std::uint32_t id_of_label(const Labels& ids, const Labels& truth, std::uint32_t 
   return best_id(ids, points, support_id);
 }
 
+// Frame `index` of the scene through the robot preset, with the mug's handle
+// and body truth labels.
+struct MugFrame {
+  synthetic::SyntheticFrame frame;
+  SceneSegmentation seg;
+  std::uint32_t handle = object_label(synthetic::kMugObject, synthetic::kHandlePart);
+  std::uint32_t body = object_label(synthetic::kMugObject);
+};
+
+MugFrame mug_frame(std::uint64_t index) {
+  const synthetic::TabletopScene scene;
+  MugFrame m{scene.render(index), {}};
+  m.seg = robot_segmenter().segment(back_project(m.frame.depth));
+  return m;
+}
+
 // Frame 31 of the scene: the mug's handle ends behind the mug's silhouette,
 // about 1 cm from the body's nearest visible points, so no voxel of it touches
 // the body, and its lowest point is 1.8 cm above the table (object_contact_m:
 // 1.5). It is held by the body it vanishes behind (detail::held_behind): a
 // part of the mug object, not the body's part.
 TEST(RobotScene, AHandleWhoseEndsTheMugHidesIsAPartOfTheMug) {
-  const synthetic::TabletopScene scene;
-  const synthetic::SyntheticFrame frame = scene.render(31);
-  const SceneSegmentation seg = robot_segmenter().segment(back_project(frame.depth));
-  const std::uint32_t handle = object_label(synthetic::kMugObject, synthetic::kHandlePart);
-  const std::uint32_t body = object_label(synthetic::kMugObject);
+  const auto [frame, seg, handle, body] = mug_frame(31);
   EXPECT_NE(id_of_label(seg.labels, frame.labels, handle, seg.support_id),
             id_of_label(seg.labels, frame.labels, body, seg.support_id));
   const std::uint32_t mug = id_of_label(seg.objects, frame.labels, body, seg.support_id);
@@ -226,11 +238,7 @@ TEST(RobotScene, AHandleWhoseEndsTheMugHidesIsAPartOfTheMug) {
 // (group_parts, PartGroups::part): the handle's points outside the body's
 // part are in one part, of the mug object.
 TEST(RobotScene, AHandleCutInTwoIsOnePartOfTheMug) {
-  const synthetic::TabletopScene scene;
-  const synthetic::SyntheticFrame frame = scene.render(12);
-  const SceneSegmentation seg = robot_segmenter().segment(back_project(frame.depth));
-  const std::uint32_t handle = object_label(synthetic::kMugObject, synthetic::kHandlePart);
-  const std::uint32_t body = object_label(synthetic::kMugObject);
+  const auto [frame, seg, handle, body] = mug_frame(12);
   const std::uint32_t body_part = id_of_label(seg.labels, frame.labels, body, seg.support_id);
   std::map<std::uint32_t, std::size_t> pieces;  // handle points per part, the body's part left out
   std::size_t outside_body = 0;

@@ -325,6 +325,16 @@ TEST(SupportPlane, PlaneThroughTheSensorIsOrientedAlongUp) {
 namespace lccp {
 namespace {
 
+// A 1 x 0.8 m table (points every `table_step_m`, uniform noise within
+// +-table_noise_m) and a 15 x 15 x 12 cm box standing on it.
+Scene box_on_table(double table_step_m, double table_noise_m) {
+  SceneBuilder b(kEye);
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
+  b.add(test::centered_rect({0, 0, 0}, X, 1.0, Y, 0.8), table_step_m, table_noise_m, kTablePoint);
+  b.add_box(0.0, 0.0, 0.15, 0.12, 0.005);
+  return b.done();
+}
+
 // With support_noise_sigmas the band follows the plane's own noise: a table
 // with +-1 mm of noise keeps 99 % of its points (the band scales as a
 // Kinect's noise does, z^2; this noise does not grow with depth, so the
@@ -332,11 +342,7 @@ namespace {
 // keeps its foot (only its lowest row of points, within half a depth step of
 // the table, goes to the plane); the 1 cm band takes its lowest centimetre.
 TEST(SupportPlane, ANoiseScaledBandLeavesObjectsTheirFoot) {
-  SceneBuilder b(kEye);
-  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
-  b.add(test::centered_rect({0, 0, 0}, X, 1.0, Y, 0.8), 0.01, 0.001, kTablePoint);
-  b.add_box(0.0, 0.0, 0.15, 0.12, 0.005);
-  const Scene s = b.done();
+  const Scene s = box_on_table(0.01, 0.001);
   std::size_t lowest_row = 0;  // box side points less than 2 mm above the table
   for (std::size_t i = 0; i < s.part.size(); ++i) {
     const double height = s.table_normal.dot(s.cloud.points[i].cast<double>()) + s.table_d;
@@ -382,11 +388,7 @@ std::pair<std::size_t, std::size_t> labelled_between(const Scene& s, const Segme
 // box's (its side's plane fits it better than the table's), the box keeps
 // its points higher up, and the table stays the support.
 TEST(SupportPlane, PatchesDecideWhichBandPointsAreTheSupports) {
-  SceneBuilder b(kEye);
-  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
-  b.add(test::centered_rect({0, 0, 0}, X, 1.0, Y, 0.8), 0.005, 0.003, kTablePoint);
-  b.add_box(0.0, 0.0, 0.15, 0.12, 0.005);
-  const Scene s = b.done();
+  const Scene s = box_on_table(0.005, 0.003);
   LccpConfig config;
   config.support = table_config();
   config.support.noise_sigmas = 3.0f;
