@@ -422,6 +422,51 @@ TEST(RobotHidden, ATallAndALowBoxBehindOneNearerBoxAreTwoObjects) {
   expect_three_objects_apart(layout, {"low box", "F", "tall box"});
 }
 
+// In every contact view: two objects, the layout's solids 10 and 20 (`names`,
+// for the printed line) each mostly in one of them, not the same.
+void expect_two_objects_apart(const test::ContactLayout& layout, const std::array<const char*, 2>& names) {
+  for (const test::ContactView& view : test::contact_views()) {
+    const test::ContactScene scene = test::contact_scene(layout, view);
+    const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
+    const std::uint32_t rear = id_holding_most(seg, scene, test::kFirstObjectLabel);
+    const std::uint32_t box = id_holding_most(seg, scene, test::kSecondObjectLabel);
+    std::printf("[robot] %s, %s: objects %u; %s in %u, %s in %u\n", layout.name.c_str(), test::describe(view).c_str(),
+                seg.object_count, names[0], rear, names[1], box);
+    EXPECT_EQ(seg.object_count, 2u) << test::describe(view);
+    EXPECT_NE(rear, box) << test::describe(view);
+  }
+}
+
+// A box 12 x 12 x 4 cm (label 10) turned 45 deg, its near corner 1 cm behind
+// box F (20), 6 cm wide and 20 cm tall, which hides that corner: the sensor
+// sees the box's top left and right of F, each piece with one of the two
+// front faces, which meet at 90 deg and continue nothing. The two pieces of
+// the top are one face facing up at one height, and the sensor sees past no
+// sample of that face's hull (F hides the rest of it): one box, and F
+// (detail::hidden_continuations).
+TEST(RobotHidden, ABoxWhoseNearCornerATallerBoxHidesIsOneObject) {
+  test::ContactSolid rear = test::box_solid({-0.06, -0.06, 0}, {0.06, 0.06, 0.04}, test::kFirstObjectLabel);
+  rear.rotation = test::yaw_matrix(45);
+  rear.position = {0, 0.01 + 0.06 * std::numbers::sqrt2, 0};
+  const test::ContactSolid front = test::box_solid({-0.03, -0.05, 0}, {0.03, 0, 0.20}, test::kSecondObjectLabel);
+  const test::ContactLayout layout{"a box whose near corner a taller box hides", {rear, front}, {0, 0.05, 0.05}};
+  expect_two_objects_apart(test::turned(layout, 20), {"box", "F"});
+}
+
+// Two boxes of one height, 6 cm, 12 cm wide each, 4 cm apart behind box F of
+// behind_a_box, which hides the gap between them; the right one stands 4 cm
+// farther back. Their tops are one plane at one height, and F hides the
+// segment between them; but the hull of the two tops reaches behind the left
+// box, where the sensor sees the table beyond (detail::hidden_continuations).
+// Two boxes, not one.
+TEST(RobotHidden, TwoBoxesOfOneHeightBehindOneNearerBoxAreTwoObjects) {
+  const test::ContactLayout layout =
+      behind_a_box("two boxes of one height behind a box",
+                   {test::box_solid({-0.14, 0.01, 0}, {-0.02, 0.07, 0.06}, test::kFirstObjectLabel),
+                    test::box_solid({0.02, 0.05, 0}, {0.14, 0.11, 0.06}, 30)});
+  expect_three_objects_apart(layout, {"left box", "F", "right box"});
+}
+
 // --- the truth itself, against hand computations ---------------------------------------
 
 // A box's footprint is the box: B of the first scene, 6 x 15 x 7 cm yawed by 30

@@ -1,15 +1,29 @@
 #pragma once
 // Convex hulls in a plane's coordinates, for the footprints of segments on the
-// support plane (geometry.cpp: boxes; grouping.cpp: what stands inside what).
+// support plane (geometry.cpp: boxes; grouping.cpp: what stands inside what;
+// occlusion.cpp: the face two tops would make).
 #include <algorithm>
 #include <span>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "lccp/core/grouped.hpp"
 
 namespace lccp::detail {
+
+// Plane coordinates: a right-handed frame (e1, e2, n) on the plane normal n.
+struct InPlane {
+  Eigen::Vector3d e1, e2;
+  explicit InPlane(const Eigen::Vector3d& n) {
+    Eigen::Index least = 0;
+    n.cwiseAbs().minCoeff(&least);
+    e1 = n.cross(Eigen::Vector3d::Unit(least)).normalized();
+    e2 = n.cross(e1);
+  }
+  Eigen::Vector2d operator()(const Eigen::Vector3d& p) const { return {p.dot(e1), p.dot(e2)}; }
+};
 
 // > 0 when o, a, b turn counter-clockwise.
 inline double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

@@ -41,18 +41,7 @@ struct PartShape {
 
 // Per part (0-based) the hull of its supervoxels' centroids in plane coordinates.
 using Hulls = Grouped<Vec2>;
-
-// Plane coordinates: a right-handed frame (e1, e2, n) on the plane normal n.
-struct InPlane {
-  Vec3 e1, e2;
-  explicit InPlane(const Vec3& n) {
-    Eigen::Index least = 0;
-    n.cwiseAbs().minCoeff(&least);
-    e1 = n.cross(Vec3::Unit(least)).normalized();
-    e2 = n.cross(e1);
-  }
-  Vec2 operator()(const Vec3& p) const { return {p.dot(e1), p.dot(e2)}; }
-};
+using detail::InPlane;
 
 std::vector<PartShape> part_shapes(const SegmentationWork& w, const Plane& plane) {
   const std::uint32_t count = w.result.segment_count;

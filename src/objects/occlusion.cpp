@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "convex_hull.hpp"
 #include "lccp/core/convexity.hpp"
 #include "lccp/core/grouped.hpp"
 
@@ -23,6 +24,7 @@ namespace lccp::detail {
 namespace {
 
 using Vec3 = Eigen::Vector3f;
+using Vec2d = Eigen::Vector2d;
 
 // floor(v) for a finite v within long's range, without a call into libm.
 long floor_of(float v) {
@@ -131,15 +133,16 @@ bool seen_past(const SeenDepth& seen, const Vec3& a, const Vec3& b, const LccpCo
 
 // One plane continues from patch a to patch b: their normals within
 // beta_thresh (the paper's bias for what counts as flat, eq. (1)) and their
-// offset along them within the sensor's depth tolerance. Not a plane that
-// faces up (within upward_max_tilt_deg of `up`, the support's normal): the
-// tops of things of one height on one table are such a plane by coincidence.
-bool continues(const Patch& a, const Patch& b, const LccpConfig& config, const Vec3& up) {
+// offset along them within the sensor's depth tolerance.
+bool continues(const Patch& a, const Patch& b, const LccpConfig& config) {
   if (normal_angle_deg(a, b) > config.convexity.beta_thresh_deg) return false;
-  const float cos_upward = std::cos(config.grouping.upward_max_tilt_deg * std::numbers::pi_v<float> / 180.0f);
-  if (a.normal.dot(up) >= cos_upward) return false;
   const float slack = config.sensor.depth_tolerance_m(0.5f * (a.centroid.z() + b.centroid.z()));
   return step_distance_m(a, b) <= slack;
+}
+
+// Whether patch a faces up: within upward_max_tilt_deg of `up`, the support's normal.
+bool faces_up(const Patch& a, const LccpConfig& config, const Vec3& up) {
+  return a.normal.dot(up) >= std::cos(config.grouping.upward_max_tilt_deg * std::numbers::pi_v<float> / 180.0f);
 }
 
 // Per part its supervoxels.
@@ -191,13 +194,73 @@ Vec3 top_above(const SegmentationWork& w, std::span<const std::uint32_t> members
   return top;
 }
 
+// The centroids, in the support's plane coordinates, of the supervoxels of
+// `members` on the upward face at `height` over the support: facing up, at
+// that height within the sensor's depth tolerance. Appended to `face`.
+void upward_face(const SegmentationWork& w, std::span<const std::uint32_t> members, float height,
+                 const LccpConfig& config, std::vector<Vec2d>& face) {
+  const Plane& plane = w.support->plane;
+  const InPlane frame(plane.normal.cast<double>());
+  for (const std::uint32_t s : members) {
+    const Patch patch{w.supervoxels.centroids[s], w.supervoxels.normals[s]};
+    const float slack = config.sensor.depth_tolerance_m(patch.centroid.z());
+    if (faces_up(patch, config, plane.normal) && std::abs(plane.distance(patch.centroid) - height) <= slack) {
+      face.push_back(frame(patch.centroid.cast<double>()));
+    }
+  }
+}
+
+// Whether the sensor sees past a sample of the convex polygon `hull` (support
+// plane coordinates) lifted to `height` over the support: samples one voxel
+// size apart.
+bool seen_past_face(const SeenDepth& seen, std::span<const Vec2d> hull, const Plane& plane, float height,
+                    const LccpConfig& config) {
+  const InPlane frame(plane.normal.cast<double>());
+  const Eigen::Vector3d lift = static_cast<double>(height - plane.d) * plane.normal.cast<double>();
+  Vec2d lo = hull[0], hi = hull[0];
+  for (const Vec2d& corner : hull) lo = lo.cwiseMin(corner), hi = hi.cwiseMax(corner);
+  const double step = config.voxels.voxel_size_m;
+  for (double u = lo.x(); u <= hi.x(); u += step) {
+    for (double v = lo.y(); v <= hi.y(); v += step) {
+      if (!inside_hull(hull, {u, v})) continue;
+      const Vec3 x = (u * frame.e1 + v * frame.e2 + lift).cast<float>();
+      const std::optional<Seen> first = seen.at(x);
+      if (first && first->depth > x.z() + meeting_margin(x, config)) return true;
+    }
+  }
+  return false;
+}
+
+// Whether upward patches a (of part p, its supervoxels `p_members`) and b (of
+// q) lie on one face the sensor cannot see past: at one height over the
+// support (within the sensor's depth tolerance), and no sample of the convex
+// hull of both parts' upward faces at that height seen past. The tops of two
+// things of one height on one table are one plane by coincidence; a face is
+// convex, so were they one, it would hold that hull. Beside or behind the
+// shorter of two such things the sensor sees past it, unless the two are
+// aligned and their gap hidden.
+bool one_face_hidden(const SegmentationWork& w, const SeenDepth& seen, const LccpConfig& config,
+                     std::span<const std::uint32_t> p_members, std::span<const std::uint32_t> q_members,
+                     const Patch& a, const Patch& b) {
+  const Plane& plane = w.support->plane;
+  const float height = plane.distance(a.centroid);
+  if (std::abs(plane.distance(b.centroid) - height) > config.sensor.depth_tolerance_m(a.centroid.z())) return false;
+  std::vector<Vec2d> face, hull;
+  upward_face(w, p_members, height, config, face);
+  upward_face(w, q_members, height, config, face);
+  convex_hull_into(face, hull);
+  return hull.size() >= 3 && !seen_past_face(seen, hull, plane, height, config);
+}
+
 // Whether parts p and q (0-based; their supervoxels `members`) continue each
 // other behind a third object across one of their facing pairs: one plane
-// continues from patch to patch, the sensor cannot see the segment between
-// them (hidden_segment), and it sees past no sample of the segment between
-// the parts' tops above the two patches. One convex face (eq. (5) holds
-// between its patches) through both tops holds that segment: a tall box and a
-// low one beside it, their feet behind one nearer box, are two.
+// continues from patch to patch, and the sensor cannot see the segment
+// between them (hidden_segment). A plane facing up is a top: one face the
+// sensor sees past nowhere (one_face_hidden). Any other plane: the sensor sees
+// past no sample of the segment between the parts' tops above the two
+// patches. One convex face (eq. (5) holds between its patches) through both
+// tops holds that segment: a tall box and a low one beside it, their feet
+// behind one nearer box, are two.
 bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const LccpConfig& config,
                      const Pairs& facing, const Grouped<std::uint32_t>& members, std::uint32_t p, std::uint32_t q) {
   const Vec3 up = w.support->plane.normal;
@@ -205,8 +268,12 @@ bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const Lcc
   for (const auto& [i, j] : facing) {
     const Patch a{w.supervoxels.centroids[i], w.supervoxels.normals[i]};
     const Patch b{w.supervoxels.centroids[j], w.supervoxels.normals[j]};
-    if (!continues(a, b, config, up) || !hidden_segment(seen, a.centroid, b.centroid, p + 1, q + 1, config)) continue;
-    if (!seen_past(seen, top_above(w, members[p], i, reach), top_above(w, members[q], j, reach), config)) return true;
+    if (!continues(a, b, config) || !hidden_segment(seen, a.centroid, b.centroid, p + 1, q + 1, config)) continue;
+    if (faces_up(a, config, up)) {
+      if (one_face_hidden(w, seen, config, members[p], members[q], a, b)) return true;
+    } else if (!seen_past(seen, top_above(w, members[p], i, reach), top_above(w, members[q], j, reach), config)) {
+      return true;
+    }
   }
   return false;
 }

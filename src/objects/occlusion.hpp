@@ -50,6 +50,10 @@ class SeenDepth {
 // ends against it: a board leaning on a box is not continued through it).
 // And the sensor sees past no sample of the segment between the two parts'
 // tops above those supervoxels: the one convex face they would be holds it.
+// Where the supervoxels face up (tops), they lie at one height over the
+// support and the sensor sees past no sample of the convex hull of both
+// parts' tops at that height: two things of one height are one top only
+// where nothing is seen beside or behind them.
 // Needs the support plane (none: no pairs).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     const SegmentationWork& work, const SeenDepth& seen, const LccpConfig& config,
