@@ -209,9 +209,10 @@ struct LimitsConfig {
 // of a neighbour (a handle, a spout, a knob) and joins the neighbour it shares
 // most supervoxel edges with; so does a part lying inside a neighbour's
 // footprint, below its top (a container's floor), a part that continues
-// another behind a nearer object (occluded_gap_m), and a part hanging in the
+// another behind a nearer object (occluded_gap_m), a part hanging in the
 // air beside a nearer body it vanishes behind, within a seed spacing of it
-// (a handle whose ends the mug hides). Parts with no body of their own that
+// (a handle whose ends the mug hides), and a part the sensor sees over a
+// neighbour's rim (a bowl's inside). Parts with no body of their own that
 // meet within one object are one part (a handle cut in two). The paper's object level
 // (beta_thresh 180 deg after plane removal, config/paper-robot.yaml) joins
 // every pair of touching objects. Needs the support plane.

@@ -4,7 +4,9 @@
 // other parts from the supervoxel adjacency graph; then every part that
 // neither stands on the support nor rests on an upward face, and every part
 // inside a neighbour's footprint below its top, joins the neighbour it shares
-// most edges with.
+// most edges with; and what a nearer object hides is read from the image and
+// the depths (occlusion.hpp): one surface on either side of it, a handle held
+// behind it, a container's inside seen over its rim.
 #include "lccp/objects/grouping.hpp"
 
 #include <algorithm>
@@ -318,6 +320,17 @@ void join_held_behind(ConcurrentUnionFind& sets, const SegmentationWork& w, cons
   for (const auto& [part, body] : detail::held_behind(w, seen, config, loose, bodies)) sets.unite(part, body);
 }
 
+// Each container's inside seen over its rim (detail::seen_over_rims) joins
+// the container; flat parts have no top to compare.
+void join_seen_over_rims(ConcurrentUnionFind& sets, const SegmentationWork& w, const LccpConfig& config,
+                         const std::vector<PartShape>& shapes, const std::vector<Footing>& feet) {
+  std::vector<float> tops(shapes.size(), -std::numeric_limits<float>::infinity());
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    if (feet[k] != Footing::flat) tops[k] = static_cast<float>(shapes[k].top);
+  }
+  for (const auto& [inside, container] : detail::seen_over_rims(w, config, tops)) sets.unite(inside, container);
+}
+
 PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   const GroupingConfig& config = lccp.grouping;
   const std::uint32_t count = w.result.segment_count;
@@ -339,6 +352,7 @@ PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   hang_clusters(sets, bodies, feet, sides);
   if (seen) join_held_behind(sets, w, *seen, lccp, bodies, feet);
   join_insides(sets, shapes, hulls, sides, config);
+  join_seen_over_rims(sets, w, lccp, shapes, feet);
   std::vector<std::uint32_t> part = one_part(sets, bodies, feet, sides);
   for (std::uint32_t& p : part) p += 1;  // labels
   return {number_objects(sets, shapes, feet), std::move(part)};

@@ -342,6 +342,66 @@ bool support_seen_under(const SegmentationWork& w, const SeenDepth& seen, std::s
   return 2 * under > members.size();
 }
 
+// Whether the pixel at offset (dx, dy) from p's pixel is the one above it in
+// the image: the direction p's pixel moves in as p rises along the support's
+// normal n (u = f x / z, v = f y / z: d(u, v) along n is proportional to
+// (n_x z - x n_z, n_y z - y n_z)) lies within 45 deg of the offset.
+bool above_in_image(const Vec3& p, const Vec3& n, float dx, float dy) {
+  const float ux = n.x() * p.z() - p.x() * n.z(), uy = n.y() * p.z() - p.y() * n.z();
+  return dx * ux + dy * uy >= std::numbers::sqrt2_v<float> / 2 * std::hypot(ux, uy);
+}
+
+// One pixel pair of an image border where part `outer` hides part `inner`
+// (labels - 1): inner's pixel is the one above outer's, and farther. `rim`:
+// the pair shows inner over outer's rim (rim_pair).
+struct OverBorder {
+  std::uint32_t inner = 0, outer = 0;
+  bool rim = false;
+  friend auto operator<=>(const OverBorder&, const OverBorder&) = default;
+};
+
+// Whether the sensor sees point pi (of a part whose top is `inner_top` over the
+// support) over a rim at pj (of a part whose top is `outer_top`): pj at its
+// part's top, on a surface that does not face up (the top of a wall, not the
+// edge of a top face); pi below that top (inside); and both tops at one
+// height (the near and the far side of one rim). Heights within the
+// sensor's depth tolerance and a voxel (meeting_margin).
+bool rim_pair(const SegmentationWork& w, const LccpConfig& config, std::size_t i, std::size_t j, float inner_top,
+              float outer_top) {
+  const Plane& plane = w.support->plane;
+  const Vec3& pj = w.cloud.points[j];
+  const float margin = meeting_margin(pj, config);
+  if (!(std::abs(inner_top - outer_top) <= margin) || plane.distance(pj) < outer_top - margin) return false;
+  if (plane.distance(w.cloud.points[i]) >= outer_top - margin) return false;
+  const std::uint32_t v = w.grid.voxel_of_point[j];
+  const Patch at_j{pj, v == kNoVoxel ? plane.normal : w.normals.directions[v]};
+  return !faces_up(at_j, config, plane.normal) && !faces_up(at_j, config, -plane.normal);
+}
+
+// Every pixel pair where a part hides the part seen above it in the image,
+// farther by more than meeting_margin (an occlusion boundary). Sorted.
+std::vector<OverBorder> borders_over(const SegmentationWork& w, const LccpConfig& config,
+                                     const std::vector<float>& tops) {
+  const Labels& labels = w.result.labels;
+  const Vec3& up = w.support->plane.normal;
+  std::vector<OverBorder> borders;
+  const auto look = [&](std::size_t i, std::size_t j, float dx, float dy) {  // i above j?
+    const std::uint32_t in = labels[i], out = labels[j];
+    if (in == 0 || out == 0 || in == out || !above_in_image(w.cloud.points[j], up, dx, dy)) return;
+    if (w.cloud.points[i].z() - w.cloud.points[j].z() <= meeting_margin(w.cloud.points[j], config)) return;
+    borders.push_back({in - 1, out - 1, rim_pair(w, config, i, j, tops[in - 1], tops[out - 1])});
+  };
+  const std::size_t width = w.cloud.width, n = w.cloud.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % width > 0) look(i, i - 1, 1, 0);
+    if (i % width + 1 < width) look(i, i + 1, -1, 0);
+    if (i >= width) look(i, i - width, 0, 1);
+    if (i + width < n) look(i, i + width, 0, -1);
+  }
+  std::sort(borders.begin(), borders.end());
+  return borders;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
@@ -388,6 +448,23 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const Segmentat
     }
   }
   return held;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_over_rims(const SegmentationWork& w,
+                                                                   const LccpConfig& config,
+                                                                   const std::vector<float>& tops) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> inside;
+  if (!w.cloud.organized() || !w.support) return inside;
+  const std::vector<OverBorder> borders = borders_over(w, config, tops);
+  for (std::size_t first = 0, last = 0; first < borders.size(); first = last) {
+    const auto same = [&](std::size_t k) {
+      return borders[k].inner == borders[first].inner && borders[k].outer == borders[first].outer;
+    };
+    std::size_t rims = 0;
+    for (last = first; last < borders.size() && same(last); ++last) rims += borders[last].rim;
+    if (2 * rims > last - first) inside.emplace_back(borders[first].inner, borders[first].outer);
+  }
+  return inside;
 }
 
 }  // namespace lccp::detail

@@ -1,6 +1,7 @@
 #pragma once
 // What a nearer object hides (grouping.cpp): which parts continue each other
-// behind an occluder, and which part hanging in the air a body holds behind itself.
+// behind an occluder, which part hanging in the air a body holds behind itself,
+// and which part is a container's inside, seen over its rim.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -73,5 +74,18 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const Segmentat
                                                                  const LccpConfig& config,
                                                                  const std::vector<std::uint8_t>& loose,
                                                                  const std::vector<std::uint8_t>& bodies);
+
+// Pairs (inside, container) of parts (0-based labels - 1) of work.result: the
+// inside of an open container (a bowl's or a pot's inner wall and floor) that
+// the sensor sees over the container's rim. Organized clouds only: along most
+// of the image border where the container hides the part seen above it in the
+// image (above: where the support's normal points), the container's point
+// lies at its top on a surface that does not face up (a wall's top edge, not
+// the edge of a top face: a box hiding another box), the part's point lies
+// below that top, and both parts' tops (`tops`, per part, metres over the
+// support) are at one height: the near and the far side of one rim.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_over_rims(const SegmentationWork& work,
+                                                                   const LccpConfig& config,
+                                                                   const std::vector<float>& tops);
 
 }  // namespace lccp::detail
