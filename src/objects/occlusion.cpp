@@ -278,6 +278,19 @@ bool continue_hidden(const SegmentationWork& w, const SeenDepth& seen, const Lcc
   return false;
 }
 
+// Calls visit(i, j, dx, dy) for every pixel i of an organized cloud and each
+// of its 4-neighbours j, (dx, dy) the offset from j's pixel to i's.
+template <class Visit>
+void for_each_neighbour_pair(const CloudView& cloud, Visit visit) {
+  const std::size_t width = cloud.width, n = cloud.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % width > 0) visit(i, i - 1, 1.0f, 0.0f);
+    if (i % width + 1 < width) visit(i, i + 1, -1.0f, 0.0f);
+    if (i >= width) visit(i, i - width, 0.0f, 1.0f);
+    if (i + width < n) visit(i, i + width, 0.0f, -1.0f);
+  }
+}
+
 // Where a loose part meets a nearer body in the image: the part's pixel of a
 // pair of 4-neighbouring pixels whose other pixel is the body's, nearer by at
 // most max_gap. Sorted by (part, body, pixel).
@@ -291,19 +304,12 @@ std::vector<Border> borders_behind(const SegmentationWork& w, const std::vector<
                                    const std::vector<std::uint8_t>& bodies, float max_gap) {
   const Labels& labels = w.result.labels;
   std::vector<Border> borders;
-  const auto look = [&](std::size_t i, std::size_t j) {  // i's loose part behind j's body
-    const std::uint32_t b = labels[j];
+  for_each_neighbour_pair(w.cloud, [&](std::size_t i, std::size_t j, float, float) {  // i's loose part behind j's body
+    const std::uint32_t a = labels[i], b = labels[j];
+    if (a == 0 || !loose[a - 1] || b == 0 || !bodies[b - 1]) return;
     const float behind = w.cloud.points[i].z() - w.cloud.points[j].z();
-    if (b != 0 && bodies[b - 1] && behind > 0.0f && behind <= max_gap) borders.push_back({labels[i] - 1, b - 1, i});
-  };
-  const std::size_t width = w.cloud.width, n = w.cloud.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (labels[i] == 0 || !loose[labels[i] - 1]) continue;
-    if (i % width > 0) look(i, i - 1);
-    if (i % width + 1 < width) look(i, i + 1);
-    if (i >= width) look(i, i - width);
-    if (i + width < n) look(i, i + width);
-  }
+    if (behind > 0.0f && behind <= max_gap) borders.push_back({a - 1, b - 1, i});
+  });
   std::sort(borders.begin(), borders.end());
   return borders;
 }
@@ -385,19 +391,12 @@ std::vector<OverBorder> borders_over(const SegmentationWork& w, const LccpConfig
   const Labels& labels = w.result.labels;
   const Vec3& up = w.support->plane.normal;
   std::vector<OverBorder> borders;
-  const auto look = [&](std::size_t i, std::size_t j, float dx, float dy) {  // i above j?
+  for_each_neighbour_pair(w.cloud, [&](std::size_t i, std::size_t j, float dx, float dy) {  // i above j?
     const std::uint32_t in = labels[i], out = labels[j];
     if (in == 0 || out == 0 || in == out || !above_in_image(w.cloud.points[j], up, dx, dy)) return;
     if (w.cloud.points[i].z() - w.cloud.points[j].z() <= meeting_margin(w.cloud.points[j], config)) return;
     borders.push_back({in - 1, out - 1, rim_pair(w, config, i, j, tops[in - 1], tops[out - 1])});
-  };
-  const std::size_t width = w.cloud.width, n = w.cloud.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i % width > 0) look(i, i - 1, 1, 0);
-    if (i % width + 1 < width) look(i, i + 1, -1, 0);
-    if (i >= width) look(i, i - width, 0, 1);
-    if (i + width < n) look(i, i + width, 0, -1);
-  }
+  });
   std::sort(borders.begin(), borders.end());
   return borders;
 }
