@@ -4,15 +4,17 @@
 // Two passes over the points, each parallel over fixed blocks of points whose
 // per-segment partial results are merged in block order, so that every figure is
 // the same whatever the thread count:
-//   1. moments: count, sum, sum of outer products and,
-//      with a support plane, the span of heights and the extreme points in
-//      eight in-plane directions;
+//   1. moments: count, sum, sum of outer products, the same with each point's
+//      voxel normal and, with a support plane, the span of heights and the
+//      extreme points in eight in-plane directions;
 //   2. spreads: extents along the principal axes and, with a plane, the hull
 //      candidates (the points outside the octagon of those extremes), listed
-//      per block and then gathered by segment into one array.
+//      per block and then gathered by segment into one array, and the sums of
+//      a circle fit across a lying cylinder's axis.
 // Between and after them, per segment (serial, segments in parallel): the 3x3
-// eigenproblem, the 2D convex hull and the minimum-area rectangle; last, the
-// segment adjacency from the supervoxel graph.
+// eigenproblem and, with a plane, the test for a cylinder lying on it, the 2D
+// convex hull (widened to such a cylinder's hidden back) and the minimum-area
+// rectangle; last, the segment adjacency from the supervoxel graph.
 #include "lccp/objects/geometry.hpp"
 
 #include <algorithm>
@@ -20,6 +22,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
@@ -95,6 +98,7 @@ std::vector<Acc> reduce_per_segment(const Labels& labels, std::size_t K, Fold&& 
 // p has plane coordinates (p . e1, p . e2) and height p . n.
 struct PlaneFrame {
   Vec3 e1, e2, n;
+  double height = 0;  // the plane's own: p . n of its points
   Vec2 in_plane(const Vec3& p) const { return {p.dot(e1), p.dot(e2)}; }
   Vec3 from_plane(const Vec2& u, double height) const { return u.x() * e1 + u.y() * e2 + height * n; }
 };
@@ -104,7 +108,8 @@ PlaneFrame plane_frame(const Plane& plane) {
   Eigen::Index least = 0;
   n.cwiseAbs().minCoeff(&least);  // the coordinate axis farthest from n
   const Vec3 e1 = n.cross(Vec3::Unit(least)).normalized();
-  return {e1, n.cross(e1), n};  // e1 x (n x e1) = n
+  const double height = -plane.d / plane.normal.cast<double>().norm();
+  return {e1, n.cross(e1), n, height};  // e1 x (n x e1) = n
 }
 
 // The eight compass directions of the plane, counter-clockwise. A segment's
@@ -146,13 +151,23 @@ struct Moments {
   // The sum of p p^T, its upper triangle (xx, xy, xz, yy, yz, zz): it is
   // symmetric, and p_i p_j is p_j p_i exactly, so the lower half is a copy.
   Eigen::Matrix<double, 6, 1> outer = Eigen::Matrix<double, 6, 1>::Zero();
-  Mat3 outer_matrix() const {
-    Mat3 m;
-    m << outer[0], outer[1], outer[2], outer[1], outer[3], outer[4], outer[2], outer[4], outer[5];
-    return m;
-  }
+  // Each point with its voxel's normal m: the sums of m m^T (upper triangle, as
+  // `outer`), of m, and of p m^T.
+  Eigen::Matrix<double, 6, 1> normal_outer = Eigen::Matrix<double, 6, 1>::Zero();
+  Vec3 normal_sum = Vec3::Zero();
+  Mat3 point_normal = Mat3::Zero();
   Footprint footprint;             // with a plane
 };
+
+Eigen::Matrix<double, 6, 1> upper_outer(const Vec3& a) {
+  return {a.x() * a.x(), a.x() * a.y(), a.x() * a.z(), a.y() * a.y(), a.y() * a.z(), a.z() * a.z()};
+}
+
+Mat3 symmetric(const Eigen::Matrix<double, 6, 1>& u) {
+  Mat3 m;
+  m << u[0], u[1], u[2], u[1], u[3], u[4], u[2], u[4], u[5];
+  return m;
+}
 
 std::vector<Moments> segment_moments(const SegmentationWork& w, const SegmentLabels& segments,
                                      const std::optional<PlaneFrame>& frame) {
@@ -160,12 +175,18 @@ std::vector<Moments> segment_moments(const SegmentationWork& w, const SegmentLab
     const Vec3 p = w.cloud.points[i].cast<double>();
     m.n += 1;
     m.sum += p;
-    m.outer += Eigen::Matrix<double, 6, 1>(p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(),
-                                          p.z() * p.z());
+    m.outer += upper_outer(p);
+    const std::uint32_t v = w.grid.voxel_of_point[i];
+    if (v < w.normals.size()) {
+      const Vec3 normal = w.normals.directions[v].cast<double>();
+      m.normal_outer += upper_outer(normal), m.normal_sum += normal, m.point_normal += p * normal.transpose();
+    }
     if (frame) m.footprint.fold(frame->in_plane(p), p.dot(frame->n));
   };
   const auto merge = [](Moments& into, const Moments& from) {
     into.n += from.n, into.sum += from.sum, into.outer += from.outer;
+    into.normal_outer += from.normal_outer, into.normal_sum += from.normal_sum;
+    into.point_normal += from.point_normal;
     into.footprint.merge(from.footprint);
   };
   return reduce_per_segment<Moments>(segments.points, segments.count, fold, merge);
@@ -176,17 +197,55 @@ std::vector<Moments> segment_moments(const SegmentationWork& w, const SegmentLab
 struct Principal {
   Vec3 centroid = Vec3::Zero();
   Mat3 axes = Mat3::Identity();
+  Vec3 lying_axis = Vec3::Zero();  // with a plane, of a cylinder lying on it (lying_axis()); zero: none
 };
 
 Principal principal_frame(const Moments& m) {
   if (m.n == 0) return {};
   Principal p;
   p.centroid = m.sum / m.n;
-  const Mat3 covariance = m.outer_matrix() / m.n - p.centroid * p.centroid.transpose();
+  const Mat3 covariance = symmetric(m.outer) / m.n - p.centroid * p.centroid.transpose();
   const Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);  // eigenvalues ascending
   p.axes = solver.eigenvectors().rowwise().reverse();
   p.axes.col(2) = p.axes.col(0).cross(p.axes.col(1));
   return p;
+}
+
+// --- between the passes: is the segment a cylinder lying on the support? -------------
+
+// A can or a bottle on its side shows the sensor half of its curved surface or
+// less, so the footprint of its points misses the hidden back (a third to a
+// half of the diameter). On a cylinder of radius r about an axis along a, every
+// point p has its outward normal m at right angles to a and p - r m on the axis.
+// With q and m the points and normals projected across a, the axis c and r
+// minimize sum |q - r m - c|^2 (linear: r = cov(m, q) / var(m), c = mean q -
+// r mean m), and the mean of that sum is var(q) - cov(m, q)^2 / var(m): the
+// normals alone tell a cylinder from a box (whose faces' normals do not
+// turn along them), from the moments of pass 1.
+
+// The normals turn through at least 90 deg across the axis: var(m) of unit
+// vectors spread evenly over an arc of 90 deg is 1 - (sin 45 deg / (pi / 4))^2.
+constexpr double kMinNormalTurn = 0.189;
+// The points lie on the cylinder the normals meet: the residual at most this share of r.
+constexpr double kMaxNormalResidual = 0.25;
+
+// The axis lying in the support plane that the normals are most nearly at right
+// angles to (the least eigenvector of the in-plane part of sum m m^T), if the
+// points and normals are those of a cylinder about it; zero otherwise.
+Vec3 lying_axis(const Moments& m, const PlaneFrame& frame) {
+  if (m.n < 3) return Vec3::Zero();
+  Eigen::Matrix<double, 3, 2> in_plane;
+  in_plane << frame.e1, frame.e2;
+  const Eigen::Matrix2d scatter = in_plane.transpose() * symmetric(m.normal_outer) * in_plane;
+  const Vec3 a = in_plane * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
+  const Mat3 across = Mat3::Identity() - a * a.transpose();
+  const Vec3 mean_q = across * m.sum / m.n, mean_m = across * m.normal_sum / m.n;
+  const double var_m = (across * symmetric(m.normal_outer)).trace() / m.n - mean_m.squaredNorm();
+  const double cov = (across * m.point_normal).trace() / m.n - mean_m.dot(mean_q);
+  const double var_q = (across * symmetric(m.outer)).trace() / m.n - mean_q.squaredNorm();
+  if (var_m < kMinNormalTurn || cov <= 0) return Vec3::Zero();
+  const double r = cov / var_m, residual = std::sqrt(std::max(0.0, var_q - cov * cov / var_m));
+  return residual <= kMaxNormalResidual * r ? a : Vec3::Zero();
 }
 
 // --- pass 2: spreads and hull candidates --------------------------------------------
@@ -223,9 +282,49 @@ class Octagon {
   std::size_t edges_ = 0;
 };
 
+// The sums for an algebraic circle fit (I. Kasa, "A circle fitting procedure and
+// its error analysis", IEEE Trans. Instrum. Meas. 25(1), 1976) across a lying
+// axis: z = x^2 + y^2 against the regressors g = (x, y, 1, t x, t), t the
+// coordinate along the axis. The last two let the axis turn in the plane: if
+// the true one is turned by a small angle d, a point's x is x + d t, and
+// z + D x + E y + F = 0 becomes, to first order in d, z + D x + E y + F + 2 d t x
+// + D d t = 0.
+struct CircleSums {
+  using Regressors = Eigen::Matrix<double, 5, 1>;
+  Eigen::Matrix<double, 5, 5> gg = Eigen::Matrix<double, 5, 5>::Zero();
+  Regressors zg = Regressors::Zero();
+  double zz = 0;
+
+  void add(const Vec3& d) {  // (x, y, t)
+    const double z = d.x() * d.x() + d.y() * d.y();
+    const Regressors g(d.x(), d.y(), 1, d.z() * d.x(), d.z());
+    gg += g * g.transpose(), zg += z * g, zz += z * z;
+  }
+  void merge(const CircleSums& from) { gg += from.gg, zg += from.zg, zz += from.zz; }
+};
+
+// The cylinder's curved surface: its normals at right angles to the axis; an
+// end's are along it. A point counts when its voxel's normal is within 30 deg
+// of square to the lying axis.
+constexpr double kMaxAxialNormal = 0.5;  // sin 30 deg
+
+bool on_lying_surface(const SegmentationWork& w, std::size_t i, const Principal& s) {
+  if (s.lying_axis.isZero()) return false;
+  const std::uint32_t v = w.grid.voxel_of_point[i];
+  return v < w.normals.size() && std::abs(w.normals.directions[v].cast<double>().dot(s.lying_axis)) <= kMaxAxialNormal;
+}
+
+// A point's coordinates across a lying axis a, from the segment's centroid:
+// along n x a, along the plane normal n, and along a.
+Vec3 axis_coordinates(const Vec3& p, const Principal& s, const PlaneFrame& frame) {
+  const Vec3 d = p - s.centroid;
+  return {d.dot(frame.n.cross(s.lying_axis)), d.dot(frame.n), d.dot(s.lying_axis)};
+}
+
 struct Spread {
   Vec3 lo = Vec3::Constant(kInf);  // along the principal axes, from the centroid
   Vec3 hi = Vec3::Constant(-kInf);
+  CircleSums circle;  // across a lying axis, if the segment has one
 };
 
 // With a plane: every segment's hull candidates (plane coordinates of its points
@@ -248,11 +347,12 @@ std::vector<Spread> segment_spreads(const SegmentationWork& w, const SegmentLabe
     const Vec3 along = principal[k].axes.transpose() * (p - principal[k].centroid);
     s.lo = s.lo.cwiseMin(along), s.hi = s.hi.cwiseMax(along);
     if (!frame) return;
+    if (on_lying_surface(w, i, principal[k])) s.circle.add(axis_coordinates(p, principal[k], *frame));
     const Vec2 u = frame->in_plane(p);
     if (!octagons[k].contains(u)) outside[b].emplace_back(static_cast<std::uint32_t>(k), u);
   };
   const auto merge = [](Spread& into, const Spread& from) {
-    into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi);
+    into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi), into.circle.merge(from.circle);
   };
   auto spreads = reduce_per_segment<Spread>(segments.points, principal.size(), fold, merge);
   candidates = group_by_key<Vec2>(principal.size(), [&](auto emit) {
@@ -309,6 +409,54 @@ Rectangle min_area_rectangle(const std::vector<Vec2>& hull) {
   return best;
 }
 
+// --- per segment: a lying cylinder's circle and bounds ------------------------------
+
+struct LyingCylinder {
+  Vec2 axis = Vec2::UnitX();  // plane coordinates, unit
+  double across = 0;          // the axis line's plane coordinate along axis rotated +90 deg
+  double radius = 0;
+  double height = 0;          // of the axis line (p . n)
+};
+
+// The points lie on the circle: their rms distance to it at most this share of r.
+constexpr double kMaxCircleResidual = 0.05;
+// The cylinder rests on the support: its lowest line within this share of r of the plane.
+constexpr double kMaxCylinderLift = 0.15;
+
+// Kasa's fit across the lying axis, the axis turned as the fit says: centre
+// (-D/2, -E/2), r^2 = (D^2 + E^2) / 4 - F; the algebraic residual z + g . b is
+// about 2 r times a point's distance to the circle.
+std::optional<LyingCylinder> lying_cylinder(const Principal& p, const Spread& s, const PlaneFrame& frame) {
+  const CircleSums& c = s.circle;
+  if (p.lying_axis.isZero() || c.gg(2, 2) < 5) return std::nullopt;  // five points: a circle and a turn
+  const CircleSums::Regressors b = c.gg.ldlt().solve(-c.zg);
+  const Vec2 centre(-b[0] / 2, -b[1] / 2);
+  const double r2 = centre.squaredNorm() - b[2];
+  if (!(r2 > 0)) return std::nullopt;
+  const double r = std::sqrt(r2), residual = std::sqrt(std::max(0.0, c.zz + b.dot(c.zg)) / c.gg(2, 2)) / (2 * r);
+  const double height = p.centroid.dot(frame.n) + centre.y(), lift = height - r - frame.height;
+  const Vec3 turned_across = frame.n.cross(p.lying_axis) + b[3] / 2 * p.lying_axis;
+  const Vec3 line = p.centroid + centre.x() * turned_across;  // a point of the axis, at the centroid's height
+  const Vec2 side = frame.in_plane(turned_across).normalized(), axis(side.y(), -side.x());
+  if (residual > kMaxCircleResidual * r || std::abs(lift) > kMaxCylinderLift * r) return std::nullopt;
+  return LyingCylinder{axis, side.dot(frame.in_plane(line)), r, height};
+}
+
+// The footprint's candidates and heights widened to the whole cylinder: its two
+// ends (the candidates' span along the axis), each as wide as the diameter.
+void bound_cylinder(const LyingCylinder& cylinder, std::vector<Vec2>& points, Footprint& footprint) {
+  double lo = kInf, hi = -kInf;
+  for (const Vec2& p : points) lo = std::min(lo, p.dot(cylinder.axis)), hi = std::max(hi, p.dot(cylinder.axis));
+  const Vec2 side(-cylinder.axis.y(), cylinder.axis.x());
+  for (const double along : {lo, hi}) {
+    for (const double offset : {-cylinder.radius, cylinder.radius}) {
+      points.push_back(along * cylinder.axis + (cylinder.across + offset) * side);
+    }
+  }
+  footprint.height_lo = std::min(footprint.height_lo, cylinder.height - cylinder.radius);
+  footprint.height_hi = std::max(footprint.height_hi, cylinder.height + cylinder.radius);
+}
+
 // --- per segment: boxes -------------------------------------------------------------
 
 // With a support plane: the minimum-area rectangle of the footprint, its longer
@@ -352,27 +500,16 @@ std::vector<OrientedBox> segment_boxes(const std::vector<Principal>& principal, 
     }
     HullScratch& s = scratch.local();
     s.points.assign(candidates[k].begin(), candidates[k].end());
+    Footprint footprint = moments[k].footprint;
+    const auto cylinder = lying_cylinder(principal[k], spreads[k], *frame);
+    if (cylinder) bound_cylinder(*cylinder, s.points, footprint);
     detail::convex_hull_into(s.points, s.hull);
-    boxes[k] = box_on_plane(min_area_rectangle(s.hull), moments[k].footprint, *frame);
+    boxes[k] = box_on_plane(min_area_rectangle(s.hull), footprint, *frame);
   });
   return boxes;
 }
 
 // --- per segment: normal, grasp -----------------------------------------------------
-
-// Per segment, the sum of its voxels' normals, each weighted by its points (all
-// points of a voxel carry its label: labels come from voxels). Serial, in voxel order.
-std::vector<Vec3> normal_sums(const SegmentationWork& w, const SegmentLabels& segments) {
-  const std::size_t K = segments.count;
-  std::vector<Vec3> sums(K, Vec3::Zero());
-  const CompressedRows& members = w.grid.points;
-  for (std::size_t v = 0; v < w.grid.size(); ++v) {
-    if (members.count(v) == 0) continue;
-    const std::uint32_t label = segments.points[*members.begin(v)];
-    if (label != 0 && label <= K) sums[label - 1] += members.count(v) * w.normals.directions[v].cast<double>();
-  }
-  return sums;
-}
 
 // The normalized mean of the member voxels' normals (weighted by their points),
 // turned to face the sensor at the origin; the direction to the sensor if they cancel.
@@ -435,7 +572,7 @@ void check_work(const SegmentationWork& w, const SegmentLabels& segments) {
 }
 
 SegmentGeometry describe(std::uint32_t id, const Moments& m, const Principal& p, const Spread& s,
-                         const OrientedBox& box, const Vec3& normal_sum, const Vec3& up) {
+                         const OrientedBox& box, const Vec3& up) {
   SegmentGeometry g;
   g.id = id;
   g.points = static_cast<std::uint64_t>(m.n);
@@ -444,7 +581,7 @@ SegmentGeometry describe(std::uint32_t id, const Moments& m, const Principal& p,
   g.obb = box;
   g.principal_axes = p.axes.cast<float>();
   g.principal_extents = (s.hi - s.lo).cast<float>();
-  g.mean_normal = mean_normal(normal_sum, p.centroid).cast<float>();
+  g.mean_normal = mean_normal(m.normal_sum, p.centroid).cast<float>();
   g.grasp = grasp_hint(p.axes.col(0), up);
   return g;
 }
@@ -462,16 +599,18 @@ std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, con
   const std::optional<PlaneFrame> frame = support ? std::optional(plane_frame(*support)) : std::nullopt;
   const std::vector<Moments> moments = segment_moments(work, segments, frame);
   std::vector<Principal> principal(K);
-  tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) { principal[k] = principal_frame(moments[k]); });
+  tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) {
+    principal[k] = principal_frame(moments[k]);
+    if (frame) principal[k].lying_axis = lying_axis(moments[k], *frame);
+  });
   HullCandidates candidates;
   const std::vector<Spread> spreads = segment_spreads(work, segments, principal, moments, frame, candidates);
   const std::vector<OrientedBox> boxes = segment_boxes(principal, moments, spreads, frame, candidates);
-  const std::vector<Vec3> normals = normal_sums(work, segments);
   const Vec3 up = frame ? frame->n : Vec3(0, -1, 0);  // without a plane: the sensor's up, -y
   std::vector<SegmentGeometry> out(K);
   tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) {
     const auto id = static_cast<std::uint32_t>(k + 1);
-    out[k] = describe(id, moments[k], principal[k], spreads[k], boxes[k], normals[k], up);
+    out[k] = describe(id, moments[k], principal[k], spreads[k], boxes[k], up);
   });
   add_adjacency(work, segments, out);
   return out;
