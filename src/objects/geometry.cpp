@@ -4,9 +4,9 @@
 // Two passes over the points, each parallel over fixed blocks of points whose
 // per-segment partial results are merged in block order, so that every figure is
 // the same whatever the thread count:
-//   1. moments: count, sum, sum of outer products, the same with each point's
-//      voxel normal and, with a support plane, the span of heights and the
-//      extreme points in eight in-plane directions;
+//   1. moments: count, sum, sum of outer products and,
+//      with a support plane, the span of heights and the extreme points in
+//      eight in-plane directions (and, over the voxels, the same with normals);
 //   2. spreads: extents along the principal axes and, with a plane, the hull
 //      candidates (the points outside the octagon of those extremes), listed
 //      per block and then gathered by segment into one array, and the sums of
@@ -151,11 +151,6 @@ struct Moments {
   // The sum of p p^T, its upper triangle (xx, xy, xz, yy, yz, zz): it is
   // symmetric, and p_i p_j is p_j p_i exactly, so the lower half is a copy.
   Eigen::Matrix<double, 6, 1> outer = Eigen::Matrix<double, 6, 1>::Zero();
-  // Each point with its voxel's normal m: the sums of m m^T (upper triangle, as
-  // `outer`), of m, and of p m^T.
-  Eigen::Matrix<double, 6, 1> normal_outer = Eigen::Matrix<double, 6, 1>::Zero();
-  Vec3 normal_sum = Vec3::Zero();
-  Mat3 point_normal = Mat3::Zero();
   Footprint footprint;             // with a plane
 };
 
@@ -176,20 +171,40 @@ std::vector<Moments> segment_moments(const SegmentationWork& w, const SegmentLab
     m.n += 1;
     m.sum += p;
     m.outer += upper_outer(p);
-    const std::uint32_t v = w.grid.voxel_of_point[i];
-    if (v < w.normals.size()) {
-      const Vec3 normal = w.normals.directions[v].cast<double>();
-      m.normal_outer += upper_outer(normal), m.normal_sum += normal, m.point_normal += p * normal.transpose();
-    }
     if (frame) m.footprint.fold(frame->in_plane(p), p.dot(frame->n));
   };
   const auto merge = [](Moments& into, const Moments& from) {
     into.n += from.n, into.sum += from.sum, into.outer += from.outer;
-    into.normal_outer += from.normal_outer, into.normal_sum += from.normal_sum;
-    into.point_normal += from.point_normal;
     into.footprint.merge(from.footprint);
   };
   return reduce_per_segment<Moments>(segments.points, segments.count, fold, merge);
+}
+
+// Per segment, each point with its voxel's normal m: the sums of m, of m m^T
+// (upper triangle, as Moments::outer) and of p m^T. A voxel's points share its
+// normal and its label (labels come from voxels), so each voxel adds its point
+// count times m, m m^T and its centroid times m^T. Serial, in voxel order.
+struct NormalMoments {
+  Vec3 sum = Vec3::Zero();
+  Eigen::Matrix<double, 6, 1> outer = Eigen::Matrix<double, 6, 1>::Zero();
+  Mat3 point_normal = Mat3::Zero();
+};
+
+std::vector<NormalMoments> normal_moments(const SegmentationWork& w, const SegmentLabels& segments) {
+  const std::size_t K = segments.count;
+  std::vector<NormalMoments> out(K);
+  const CompressedRows& members = w.grid.points;
+  for (std::size_t v = 0; v < w.grid.size(); ++v) {
+    if (members.count(v) == 0) continue;
+    const std::uint32_t label = segments.points[*members.begin(v)];
+    if (label == 0 || label > K) continue;
+    const Vec3 m = w.normals.directions[v].cast<double>();
+    const double n = static_cast<double>(members.count(v));
+    NormalMoments& s = out[label - 1];
+    const Vec3 points_sum = n * w.grid.centroids[v].cast<double>();
+    s.sum += n * m, s.outer += n * upper_outer(m), s.point_normal += points_sum * m.transpose();
+  }
+  return out;
 }
 
 // Centroid and principal axes (PCA: eigenvectors of the covariance), columns by
@@ -232,16 +247,16 @@ constexpr double kMaxNormalResidual = 0.25;
 // The axis lying in the support plane that the normals are most nearly at right
 // angles to (the least eigenvector of the in-plane part of sum m m^T), if the
 // points and normals are those of a cylinder about it; zero otherwise.
-Vec3 lying_axis(const Moments& m, const PlaneFrame& frame) {
+Vec3 lying_axis(const Moments& m, const NormalMoments& normals, const PlaneFrame& frame) {
   if (m.n < 3) return Vec3::Zero();
   Eigen::Matrix<double, 3, 2> in_plane;
   in_plane << frame.e1, frame.e2;
-  const Eigen::Matrix2d scatter = in_plane.transpose() * symmetric(m.normal_outer) * in_plane;
+  const Eigen::Matrix2d scatter = in_plane.transpose() * symmetric(normals.outer) * in_plane;
   const Vec3 a = in_plane * Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
   const Mat3 across = Mat3::Identity() - a * a.transpose();
-  const Vec3 mean_q = across * m.sum / m.n, mean_m = across * m.normal_sum / m.n;
-  const double var_m = (across * symmetric(m.normal_outer)).trace() / m.n - mean_m.squaredNorm();
-  const double cov = (across * m.point_normal).trace() / m.n - mean_m.dot(mean_q);
+  const Vec3 mean_q = across * m.sum / m.n, mean_m = across * normals.sum / m.n;
+  const double var_m = (across * symmetric(normals.outer)).trace() / m.n - mean_m.squaredNorm();
+  const double cov = (across * normals.point_normal).trace() / m.n - mean_m.dot(mean_q);
   const double var_q = (across * symmetric(m.outer)).trace() / m.n - mean_q.squaredNorm();
   if (var_m < kMinNormalTurn || cov <= 0) return Vec3::Zero();
   const double r = cov / var_m, residual = std::sqrt(std::max(0.0, var_q - cov * cov / var_m));
@@ -284,20 +299,19 @@ class Octagon {
 
 // The sums for an algebraic circle fit (I. Kasa, "A circle fitting procedure and
 // its error analysis", IEEE Trans. Instrum. Meas. 25(1), 1976) across a lying
-// axis: z = x^2 + y^2 against the regressors g = (x, y, 1, t x, t), t the
-// coordinate along the axis. The last two let the axis turn in the plane: if
-// the true one is turned by a small angle d, a point's x is x + d t, and
-// z + D x + E y + F = 0 becomes, to first order in d, z + D x + E y + F + 2 d t x
-// + D d t = 0.
+// axis: z = x^2 + y^2 against the regressors g = (x, y, 1) and, to let the axis
+// turn in the plane, (t x, t), t the coordinate along the axis: if the true
+// axis is turned by a small angle d, a point's x is x + d t, and z + D x + E y
+// + F = 0 becomes, to first order in d, z + D x + E y + F + 2 d t x + D d t = 0.
 struct CircleSums {
   using Regressors = Eigen::Matrix<double, 5, 1>;
   Eigen::Matrix<double, 5, 5> gg = Eigen::Matrix<double, 5, 5>::Zero();
   Regressors zg = Regressors::Zero();
   double zz = 0;
 
-  void add(const Vec3& d) {  // (x, y, t)
-    const double z = d.x() * d.x() + d.y() * d.y();
-    const Regressors g(d.x(), d.y(), 1, d.z() * d.x(), d.z());
+  void add(const Vec3& q) {  // (x, y, t)
+    const double z = q.x() * q.x() + q.y() * q.y();
+    const Regressors g(q.x(), q.y(), 1, q.z() * q.x(), q.z());
     gg += g * g.transpose(), zg += z * g, zz += z * z;
   }
   void merge(const CircleSums& from) { gg += from.gg, zg += from.zg, zz += from.zz; }
@@ -314,8 +328,8 @@ bool on_lying_surface(const SegmentationWork& w, std::size_t i, const Principal&
   return v < w.normals.size() && std::abs(w.normals.directions[v].cast<double>().dot(s.lying_axis)) <= kMaxAxialNormal;
 }
 
-// A point's coordinates across a lying axis a, from the segment's centroid:
-// along n x a, along the plane normal n, and along a.
+// A point's coordinates about a lying axis a, from the segment's centroid:
+// across it (along n x a and along the plane normal n), then along it.
 Vec3 axis_coordinates(const Vec3& p, const Principal& s, const PlaneFrame& frame) {
   const Vec3 d = p - s.centroid;
   return {d.dot(frame.n.cross(s.lying_axis)), d.dot(frame.n), d.dot(s.lying_axis)};
@@ -324,7 +338,6 @@ Vec3 axis_coordinates(const Vec3& p, const Principal& s, const PlaneFrame& frame
 struct Spread {
   Vec3 lo = Vec3::Constant(kInf);  // along the principal axes, from the centroid
   Vec3 hi = Vec3::Constant(-kInf);
-  CircleSums circle;  // across a lying axis, if the segment has one
 };
 
 // With a plane: every segment's hull candidates (plane coordinates of its points
@@ -347,12 +360,11 @@ std::vector<Spread> segment_spreads(const SegmentationWork& w, const SegmentLabe
     const Vec3 along = principal[k].axes.transpose() * (p - principal[k].centroid);
     s.lo = s.lo.cwiseMin(along), s.hi = s.hi.cwiseMax(along);
     if (!frame) return;
-    if (on_lying_surface(w, i, principal[k])) s.circle.add(axis_coordinates(p, principal[k], *frame));
     const Vec2 u = frame->in_plane(p);
     if (!octagons[k].contains(u)) outside[b].emplace_back(static_cast<std::uint32_t>(k), u);
   };
   const auto merge = [](Spread& into, const Spread& from) {
-    into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi), into.circle.merge(from.circle);
+    into.lo = into.lo.cwiseMin(from.lo), into.hi = into.hi.cwiseMax(from.hi);
   };
   auto spreads = reduce_per_segment<Spread>(segments.points, principal.size(), fold, merge);
   candidates = group_by_key<Vec2>(principal.size(), [&](auto emit) {
@@ -409,6 +421,16 @@ Rectangle min_area_rectangle(const std::vector<Vec2>& hull) {
   return best;
 }
 
+// The rectangle with sides along u (unit) and its normal around the points.
+Rectangle rectangle_along(const std::vector<Vec2>& points, const Vec2& u) {
+  Rectangle r{u, Vec2::Constant(kInf), Vec2::Constant(-kInf)};
+  for (const Vec2& p : points) {
+    const Vec2 q(u.dot(p), r.v().dot(p));
+    r.lo = r.lo.cwiseMin(q), r.hi = r.hi.cwiseMax(q);
+  }
+  return r;
+}
+
 // --- per segment: a lying cylinder's circle and bounds ------------------------------
 
 struct LyingCylinder {
@@ -418,28 +440,86 @@ struct LyingCylinder {
   double height = 0;          // of the axis line (p . n)
 };
 
-// The points lie on the circle: their rms distance to it at most this share of r.
+// The points (but for those the band leaves out) lie on the circle: their rms
+// distance to it at most this share of r.
 constexpr double kMaxCircleResidual = 0.05;
+// The second fit takes the points within this many rms distances of the first
+// circle: an end's rim seen edge-on lies inside the circle, and its voxels'
+// normals can be the side's (crease-preserving normals).
+constexpr double kCircleBand = 2.5;
 // The cylinder rests on the support: its lowest line within this share of r of the plane.
 constexpr double kMaxCylinderLift = 0.15;
 
-// Kasa's fit across the lying axis, the axis turned as the fit says: centre
-// (-D/2, -E/2), r^2 = (D^2 + E^2) / 4 - F; the algebraic residual z + g . b is
-// about 2 r times a point's distance to the circle.
-std::optional<LyingCylinder> lying_cylinder(const Principal& p, const Spread& s, const PlaneFrame& frame) {
-  const CircleSums& c = s.circle;
-  if (p.lying_axis.isZero() || c.gg(2, 2) < 5) return std::nullopt;  // five points: a circle and a turn
-  const CircleSums::Regressors b = c.gg.ldlt().solve(-c.zg);
+struct Circle {
+  Vec2 centre = Vec2::Zero();  // across the axis, from the segment's centroid
+  double radius = 0;
+  double rms = 0;              // the points' rms distance to it (algebraic, to first order)
+  double turn = 0;             // the axis's turn d (rad), with turn_axis
+};
+
+// Kasa's fit over the first `terms` regressors (3, or 5 to turn the axis):
+// z + g . b = 0 in the least-squares sense, centre (-b0/2, -b1/2), r^2 =
+// (b0^2 + b1^2) / 4 - b2; the algebraic residual z + g . b is about 2 r times a
+// point's distance to the circle.
+std::optional<Circle> fit_circle(const CircleSums& c, Eigen::Index terms) {
+  if (c.gg(2, 2) < static_cast<double>(terms)) return std::nullopt;
+  const Eigen::VectorXd b = c.gg.topLeftCorner(terms, terms).ldlt().solve(-c.zg.head(terms));
   const Vec2 centre(-b[0] / 2, -b[1] / 2);
   const double r2 = centre.squaredNorm() - b[2];
   if (!(r2 > 0)) return std::nullopt;
-  const double r = std::sqrt(r2), residual = std::sqrt(std::max(0.0, c.zz + b.dot(c.zg)) / c.gg(2, 2)) / (2 * r);
-  const double height = p.centroid.dot(frame.n) + centre.y(), lift = height - r - frame.height;
-  const Vec3 turned_across = frame.n.cross(p.lying_axis) + b[3] / 2 * p.lying_axis;
-  const Vec3 line = p.centroid + centre.x() * turned_across;  // a point of the axis, at the centroid's height
-  const Vec2 side = frame.in_plane(turned_across).normalized(), axis(side.y(), -side.x());
-  if (residual > kMaxCircleResidual * r || std::abs(lift) > kMaxCylinderLift * r) return std::nullopt;
-  return LyingCylinder{axis, side.dot(frame.in_plane(line)), r, height};
+  const double r = std::sqrt(r2), residual = c.zz + b.dot(c.zg.head(terms));
+  return Circle{centre, r, std::sqrt(std::max(0.0, residual) / c.gg(2, 2)) / (2 * r), terms > 3 ? b[3] / 2 : 0.0};
+}
+
+// Passes 3 and 4, over the segments with a lying axis only: the circle sums of
+// the points on the curved surface that keep(k, q) takes, q their axis coordinates.
+template <typename Keep>
+std::vector<CircleSums> circle_sums(const SegmentationWork& w, const SegmentLabels& segments,
+                                    const std::vector<Principal>& principal, const PlaneFrame& frame, Keep&& keep) {
+  const auto fold = [&](CircleSums& s, std::size_t i, std::size_t k, std::size_t) {
+    if (!on_lying_surface(w, i, principal[k])) return;
+    const Vec3 q = axis_coordinates(w.cloud.points[i].cast<double>(), principal[k], frame);
+    if (keep(k, q)) s.add(q);
+  };
+  const auto merge = [](CircleSums& into, const CircleSums& from) { into.merge(from); };
+  return reduce_per_segment<CircleSums>(segments.points, principal.size(), fold, merge);
+}
+
+// The cylinder of the second fit (the axis turned as it says), if its points
+// lie on it and it rests on the support.
+std::optional<LyingCylinder> resting_cylinder(const Principal& p, const CircleSums& banded, const PlaneFrame& frame) {
+  const std::optional<Circle> c = fit_circle(banded, 5);
+  if (!c || c->rms > kMaxCircleResidual * c->radius) return std::nullopt;
+  const double height = p.centroid.dot(frame.n) + c->centre.y();
+  if (std::abs(height - c->radius - frame.height) > kMaxCylinderLift * c->radius) return std::nullopt;
+  const Vec3 across = frame.n.cross(p.lying_axis) + c->turn * p.lying_axis;  // x + d t
+  const Vec2 side = frame.in_plane(across).normalized(), axis(side.y(), -side.x());
+  const Vec3 line = p.centroid + c->centre.x() * across;  // a point of the axis line
+  return LyingCylinder{axis, side.dot(frame.in_plane(line)), c->radius, height};
+}
+
+// Every segment's cylinder lying on the support, if it is one: a first circle
+// over all the points of its curved surface, a second over those in the band.
+std::vector<std::optional<LyingCylinder>> lying_cylinders(const SegmentationWork& w, const SegmentLabels& segments,
+                                                          const std::vector<Principal>& principal,
+                                                          const PlaneFrame& frame) {
+  std::vector<std::optional<LyingCylinder>> out(principal.size());
+  if (std::all_of(principal.begin(), principal.end(), [](const Principal& p) { return p.lying_axis.isZero(); })) {
+    return out;
+  }
+  const auto every = [](std::size_t, const Vec3&) { return true; };
+  const std::vector<CircleSums> all = circle_sums(w, segments, principal, frame, every);
+  std::vector<std::optional<Circle>> first(principal.size());
+  for (std::size_t k = 0; k < first.size(); ++k) first[k] = fit_circle(all[k], 3);
+  const auto in_band = [&](std::size_t k, const Vec3& q) {
+    if (!first[k]) return false;
+    return std::abs((q.head<2>() - first[k]->centre).norm() - first[k]->radius) <= kCircleBand * first[k]->rms;
+  };
+  const std::vector<CircleSums> banded = circle_sums(w, segments, principal, frame, in_band);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (first[k]) out[k] = resting_cylinder(principal[k], banded[k], frame);
+  }
+  return out;
 }
 
 // The footprint's candidates and heights widened to the whole cylinder: its two
@@ -490,7 +570,8 @@ struct HullScratch {
 
 std::vector<OrientedBox> segment_boxes(const std::vector<Principal>& principal, const std::vector<Moments>& moments,
                                        const std::vector<Spread>& spreads, const std::optional<PlaneFrame>& frame,
-                                       const HullCandidates& candidates) {
+                                       const HullCandidates& candidates,
+                                       const std::vector<std::optional<LyingCylinder>>& cylinders) {
   std::vector<OrientedBox> boxes(spreads.size());
   tbb::enumerable_thread_specific<HullScratch> scratch;
   tbb::parallel_for(std::size_t{0}, boxes.size(), [&](std::size_t k) {
@@ -501,10 +582,11 @@ std::vector<OrientedBox> segment_boxes(const std::vector<Principal>& principal, 
     HullScratch& s = scratch.local();
     s.points.assign(candidates[k].begin(), candidates[k].end());
     Footprint footprint = moments[k].footprint;
-    const auto cylinder = lying_cylinder(principal[k], spreads[k], *frame);
+    const std::optional<LyingCylinder>& cylinder = cylinders[k];
     if (cylinder) bound_cylinder(*cylinder, s.points, footprint);
     detail::convex_hull_into(s.points, s.hull);
-    boxes[k] = box_on_plane(min_area_rectangle(s.hull), footprint, *frame);
+    const Rectangle r = cylinder ? rectangle_along(s.hull, cylinder->axis) : min_area_rectangle(s.hull);
+    boxes[k] = box_on_plane(r, footprint, *frame);
   });
   return boxes;
 }
@@ -572,7 +654,7 @@ void check_work(const SegmentationWork& w, const SegmentLabels& segments) {
 }
 
 SegmentGeometry describe(std::uint32_t id, const Moments& m, const Principal& p, const Spread& s,
-                         const OrientedBox& box, const Vec3& up) {
+                         const OrientedBox& box, const Vec3& normal_sum, const Vec3& up) {
   SegmentGeometry g;
   g.id = id;
   g.points = static_cast<std::uint64_t>(m.n);
@@ -581,7 +663,7 @@ SegmentGeometry describe(std::uint32_t id, const Moments& m, const Principal& p,
   g.obb = box;
   g.principal_axes = p.axes.cast<float>();
   g.principal_extents = (s.hi - s.lo).cast<float>();
-  g.mean_normal = mean_normal(m.normal_sum, p.centroid).cast<float>();
+  g.mean_normal = mean_normal(normal_sum, p.centroid).cast<float>();
   g.grasp = grasp_hint(p.axes.col(0), up);
   return g;
 }
@@ -598,19 +680,22 @@ std::vector<SegmentGeometry> describe_segments(const SegmentationWork& work, con
   const std::size_t K = segments.count;
   const std::optional<PlaneFrame> frame = support ? std::optional(plane_frame(*support)) : std::nullopt;
   const std::vector<Moments> moments = segment_moments(work, segments, frame);
+  const std::vector<NormalMoments> normals = normal_moments(work, segments);
   std::vector<Principal> principal(K);
   tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) {
     principal[k] = principal_frame(moments[k]);
-    if (frame) principal[k].lying_axis = lying_axis(moments[k], *frame);
+    if (frame) principal[k].lying_axis = lying_axis(moments[k], normals[k], *frame);
   });
   HullCandidates candidates;
   const std::vector<Spread> spreads = segment_spreads(work, segments, principal, moments, frame, candidates);
-  const std::vector<OrientedBox> boxes = segment_boxes(principal, moments, spreads, frame, candidates);
+  const std::vector<std::optional<LyingCylinder>> cylinders =
+      frame ? lying_cylinders(work, segments, principal, *frame) : std::vector<std::optional<LyingCylinder>>(K);
+  const std::vector<OrientedBox> boxes = segment_boxes(principal, moments, spreads, frame, candidates, cylinders);
   const Vec3 up = frame ? frame->n : Vec3(0, -1, 0);  // without a plane: the sensor's up, -y
   std::vector<SegmentGeometry> out(K);
   tbb::parallel_for(std::size_t{0}, K, [&](std::size_t k) {
     const auto id = static_cast<std::uint32_t>(k + 1);
-    out[k] = describe(id, moments[k], principal[k], spreads[k], boxes[k], up);
+    out[k] = describe(id, moments[k], principal[k], spreads[k], boxes[k], normals[k].sum, up);
   });
   add_adjacency(work, segments, out);
   return out;
