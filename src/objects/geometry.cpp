@@ -226,27 +226,24 @@ Principal principal_frame(const Moments& m) {
   return p;
 }
 
-// --- between the passes: is the segment a cylinder lying on the support? -------------
+// --- between the passes: could the segment be a cylinder lying on the support? -------
 
 // A can or a bottle on its side shows the sensor half of its curved surface or
 // less, so the footprint of its points misses the hidden back (a third to a
-// half of the diameter). On a cylinder of radius r about an axis along a, every
-// point p has its outward normal m at right angles to a and p - r m on the axis.
-// With q and m the points and normals projected across a, the axis c and r
-// minimize sum |q - r m - c|^2 (linear: r = cov(m, q) / var(m), c = mean q -
-// r mean m), and the mean of that sum is var(q) - cov(m, q)^2 / var(m): the
-// normals alone tell a cylinder from a box (whose faces' normals do not
-// turn along them), from the moments of pass 1.
+// half of the diameter). On a cylinder about an axis along a, every point's
+// outward normal m is at right angles to a and turns with the point around it.
+// So a segment is a candidate when, with q and m its points and normals
+// projected across the axis lying in the support plane that its normals are
+// most nearly at right angles to, the normals turn through at least 90 deg
+// (var(m)) and point away from the axis, as the points do (cov(m, q) > 0: the
+// outside of a cylinder, not a trough's inside). lying_cylinders() decides.
 
-// The normals turn through at least 90 deg across the axis: var(m) of unit
-// vectors spread evenly over an arc of 90 deg is 1 - (sin 45 deg / (pi / 4))^2.
+// var(m) of unit vectors spread evenly over an arc of 90 deg: 1 - (sin 45 deg / (pi / 4))^2.
 constexpr double kMinNormalTurn = 0.189;
-// The points lie on the cylinder the normals meet: the residual at most this share of r.
-constexpr double kMaxNormalResidual = 0.25;
 
 // The axis lying in the support plane that the normals are most nearly at right
 // angles to (the least eigenvector of the in-plane part of sum m m^T), if the
-// points and normals are those of a cylinder about it; zero otherwise.
+// segment is a candidate; zero otherwise.
 Vec3 lying_axis(const Moments& m, const NormalMoments& normals, const PlaneFrame& frame) {
   if (m.n < 3) return Vec3::Zero();
   Eigen::Matrix<double, 3, 2> in_plane;
@@ -257,10 +254,7 @@ Vec3 lying_axis(const Moments& m, const NormalMoments& normals, const PlaneFrame
   const Vec3 mean_q = across * m.sum / m.n, mean_m = across * normals.sum / m.n;
   const double var_m = (across * symmetric(normals.outer)).trace() / m.n - mean_m.squaredNorm();
   const double cov = (across * normals.point_normal).trace() / m.n - mean_m.dot(mean_q);
-  const double var_q = (across * symmetric(m.outer)).trace() / m.n - mean_q.squaredNorm();
-  if (var_m < kMinNormalTurn || cov <= 0) return Vec3::Zero();
-  const double r = cov / var_m, residual = std::sqrt(std::max(0.0, var_q - cov * cov / var_m));
-  return residual <= kMaxNormalResidual * r ? a : Vec3::Zero();
+  return var_m >= kMinNormalTurn && cov > 0 ? a : Vec3::Zero();
 }
 
 // --- pass 2: spreads and hull candidates --------------------------------------------
