@@ -309,48 +309,6 @@ class Octagon {
   std::size_t edges_ = 0;
 };
 
-// The sums for an algebraic circle fit (I. Kasa, "A circle fitting procedure and
-// its error analysis", IEEE Trans. Instrum. Meas. 25(1), 1976) across a lying
-// axis: z = x^2 + y^2 against the regressors g = (x, y, 1) and, in the second
-// fit, (t x, t, t^2), t the coordinate along the axis. If the true axis is
-// turned by a small angle d, a point's x is x + d t, and z + D x + E y + F = 0
-// becomes, to first order in d, z + D x + E y + F + 2 d t x + D d t = 0. And a
-// radius that changes along the axis adds K t^2 (with t): K = 0 on a cylinder,
-// 1 on a sphere (x^2 + y^2 + t^2 = R^2), whose every section is a circle too.
-struct CircleSums {
-  using Regressors = Eigen::Matrix<double, 6, 1>;
-  Eigen::Index terms = 3;  // the regressors used: 3, or 6
-  Eigen::Matrix<double, 6, 6> gg = Eigen::Matrix<double, 6, 6>::Zero();  // upper triangle
-  Regressors zg = Regressors::Zero();
-  double zz = 0;
-
-  void add(const Vec3& q, double weight) {  // (x, y, t)
-    const double z = q.x() * q.x() + q.y() * q.y();
-    Regressors g;
-    g << q.x(), q.y(), 1, q.z() * q.x(), q.z(), q.z() * q.z();
-    for (Eigen::Index i = 0; i < terms; ++i) {
-      for (Eigen::Index j = i; j < terms; ++j) gg(i, j) += weight * g[i] * g[j];
-    }
-    zg.head(terms) += weight * z * g.head(terms), zz += weight * z * z;
-  }
-};
-
-// The cylinder's curved surface: its normals at right angles to the axis; an
-// end's are along it. A voxel counts when its normal is within 30 deg of square
-// to the lying axis.
-constexpr double kMaxAxialNormal = 0.5;  // sin 30 deg
-
-bool on_lying_surface(const Eigen::Vector3f& normal, const Principal& s) {
-  return !s.lying_axis.isZero() && std::abs(normal.cast<double>().dot(s.lying_axis)) <= kMaxAxialNormal;
-}
-
-// A point's coordinates about a lying axis a, from the segment's centroid:
-// across it (along n x a and along the plane normal n), then along it.
-Vec3 axis_coordinates(const Vec3& p, const Principal& s, const PlaneFrame& frame) {
-  const Vec3 d = p - s.centroid;
-  return {d.dot(frame.n.cross(s.lying_axis)), d.dot(frame.n), d.dot(s.lying_axis)};
-}
-
 struct Spread {
   Vec3 lo = Vec3::Constant(kInf);  // along the principal axes, from the centroid
   Vec3 hi = Vec3::Constant(-kInf);
@@ -448,6 +406,48 @@ Rectangle rectangle_along(const std::vector<Vec2>& points, const Vec2& u) {
 }
 
 // --- per segment: a lying cylinder's circle and bounds ------------------------------
+
+// The sums for an algebraic circle fit (I. Kasa, "A circle fitting procedure and
+// its error analysis", IEEE Trans. Instrum. Meas. 25(1), 1976) across a lying
+// axis: z = x^2 + y^2 against the regressors g = (x, y, 1) and, in the second
+// fit, (t x, t, t^2), t the coordinate along the axis. If the true axis is
+// turned by a small angle d, a point's x is x + d t, and z + D x + E y + F = 0
+// becomes, to first order in d, z + D x + E y + F + 2 d t x + D d t = 0. And a
+// radius that changes along the axis adds K t^2 (with t): K = 0 on a cylinder,
+// 1 on a sphere (x^2 + y^2 + t^2 = R^2), whose every section is a circle too.
+struct CircleSums {
+  using Regressors = Eigen::Matrix<double, 6, 1>;
+  Eigen::Index terms = 3;  // the regressors used: 3, or 6
+  Eigen::Matrix<double, 6, 6> gg = Eigen::Matrix<double, 6, 6>::Zero();  // upper triangle
+  Regressors zg = Regressors::Zero();
+  double zz = 0;
+
+  void add(const Vec3& q, double weight) {  // (x, y, t)
+    const double z = q.x() * q.x() + q.y() * q.y();
+    Regressors g;
+    g << q.x(), q.y(), 1, q.z() * q.x(), q.z(), q.z() * q.z();
+    for (Eigen::Index i = 0; i < terms; ++i) {
+      for (Eigen::Index j = i; j < terms; ++j) gg(i, j) += weight * g[i] * g[j];
+    }
+    zg.head(terms) += weight * z * g.head(terms), zz += weight * z * z;
+  }
+};
+
+// The cylinder's curved surface: its normals at right angles to the axis; an
+// end's are along it. A voxel counts when its normal is within 30 deg of square
+// to the lying axis.
+constexpr double kMaxAxialNormal = 0.5;  // sin 30 deg
+
+bool on_lying_surface(const Eigen::Vector3f& normal, const Principal& s) {
+  return !s.lying_axis.isZero() && std::abs(normal.cast<double>().dot(s.lying_axis)) <= kMaxAxialNormal;
+}
+
+// A point's coordinates about a lying axis a, from the segment's centroid:
+// across it (along n x a and along the plane normal n), then along it.
+Vec3 axis_coordinates(const Vec3& p, const Principal& s, const PlaneFrame& frame) {
+  const Vec3 d = p - s.centroid;
+  return {d.dot(frame.n.cross(s.lying_axis)), d.dot(frame.n), d.dot(s.lying_axis)};
+}
 
 struct LyingCylinder {
   Vec2 axis = Vec2::UnitX();  // plane coordinates, unit
