@@ -456,10 +456,10 @@ struct LyingCylinder {
   double height = 0;          // of the axis line (p . n)
 };
 
-// The points (but for those the band leaves out) lie on the circle: their rms
-// distance to it at most this share of r.
+// The voxels (but for those the band leaves out) lie on the circle: their rms
+// distance to it, weighted by their points, at most this share of r.
 constexpr double kMaxCircleResidual = 0.05;
-// The second fit takes the points within this many rms distances of the first
+// The second fit takes the voxels within this many rms distances of the first
 // circle: an end's rim seen edge-on lies inside the circle, and its voxels'
 // normals can be the side's (crease-preserving normals).
 constexpr double kCircleBand = 2.5;
@@ -525,7 +525,7 @@ std::optional<LyingCylinder> resting_cylinder(const Principal& p, const CircleSu
 }
 
 // Every segment's cylinder lying on the support, if it is one: a first circle
-// over all the points of its curved surface, a second over those in the band.
+// over all the voxels of its curved surface, a second over those in the band.
 std::vector<std::optional<LyingCylinder>> lying_cylinders(const SegmentationWork& w,
                                                           const std::vector<std::uint32_t>& labels,
                                                           const std::vector<Principal>& principal,
