@@ -196,14 +196,22 @@ class Flood {
     claims_[u].owner = k;
     band.sums[k].add(voxels_[u].xyz, voxels_[u].normal, coloured_ ? &grid_.colors[u] : nullptr, band.patches[k]);
     const Patch& patch = band.patches[k];
+    // The free neighbours in the band, listed without branches (which of
+    // them are free is unpredictable), then measured.
+    std::array<std::uint32_t, 26> free;
+    std::size_t count = 0;
+    const std::uint32_t span = band.last - band.first;
     for (const std::uint32_t* w = grid_.neighbors.begin(u); w != grid_.neighbors.end(u); ++w) {
-      if (*w < band.first || *w >= band.last) continue;
-      Claim& claim = claims_[*w];
-      if (claim.owner != kNone) continue;
-      const float d = admitted_distance(*w, patch);
+      const std::uint32_t x = *w - band.first < span ? *w : u;  // u is settled: never listed
+      free[count] = x;
+      count += claims_[x].owner == kNone;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      Claim& claim = claims_[free[i]];
+      const float d = admitted_distance(free[i], patch);
       if (!(d < claim.distance)) continue;
       claim.distance = d;
-      band.queue.push(d, *w, k);
+      band.queue.push(d, free[i], k);
     }
   }
 
