@@ -16,13 +16,10 @@ namespace {
 constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr float kUnreached = std::numeric_limits<float>::infinity();
 constexpr float kReachSeeds = 1.8f;  // VCCS's reach, int(1.8 s / v) - 1 rings of v: 1.8 seed spacings
-// Voxels per flood band, about (a 640 x 480 table-top frame at P1 has about
-// 50 000: four bands). A band's border cuts patches that would cross it; both
-// sides lie on one surface, so LCCP's convexity joins them again. Two bands'
-// worth or more make a multiple of kBandMultiple bands, which 1, 2 or 4
-// threads share evenly (one contiguous share each, parallel.hpp).
+// Voxels a flood band holds at least (a 640 x 480 table-top frame at P1 has
+// about 50 000: four bands). A band's border cuts patches that would cross
+// it; both sides lie on one surface, so LCCP's convexity joins them again.
 constexpr std::size_t kBandVoxels = 12288;
-constexpr std::size_t kBandMultiple = 4;
 
 // What the flood reads of a voxel, in one place: its centroid, the sensor's
 // depth tolerance at its depth, its normal.
@@ -157,11 +154,10 @@ class Flood {
            config_.spatial_weight * kReachSeeds;
   }
 
-  // Bands of about kBandVoxels voxels, equal in size: they depend on the grid
-  // alone, never on the thread count, so the labels do not either.
+  // Bands of at least kBandVoxels voxels (one if fewer), equal in size: they
+  // depend on the grid alone, never on the thread count, so the labels do not either.
   std::vector<Band> make_bands() const {
-    const std::size_t n = claims_.size(), whole = n / kBandVoxels;
-    const std::size_t count = whole < 2 ? 1 : (whole + kBandMultiple - 1) / kBandMultiple * kBandMultiple;
+    const std::size_t n = claims_.size(), count = std::max<std::size_t>(1, n / kBandVoxels);
     std::vector<Band> bands;
     for (std::size_t b = 0; b < count; ++b) {
       bands.push_back(Band{static_cast<std::uint32_t>(n * b / count), static_cast<std::uint32_t>(n * (b + 1) / count),
