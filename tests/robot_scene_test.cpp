@@ -254,6 +254,30 @@ TEST(RobotScene, AHandleCutInTwoIsOnePartOfTheMug) {
             id_of_label(seg.objects, frame.labels, body, seg.support_id));
 }
 
+// Frame 38 of the scene: P1 cuts the mug's handle in two and neither half
+// meets the body where the sensor sees it. The upper half vanishes behind the
+// mug (held_behind); the lower half, 18 mm above the table, meets only the
+// upper half. A loose piece that meets another is held by what holds that one
+// (join_held_behind): the whole handle is one part, of the mug object (before,
+// the lower half was an object of its own).
+TEST(RobotScene, AHandleHalfMeetingOnlyTheHeldHalfIsOfTheMug) {
+  const auto [frame, seg, handle, body] = mug_frame(38);
+  std::map<std::uint32_t, std::size_t> parts;  // handle points per part
+  std::size_t handle_points = 0, in_mug = 0;
+  const std::uint32_t mug = id_of_label(seg.objects, frame.labels, body, seg.support_id);
+  ASSERT_NE(mug, 0u);
+  for (std::size_t i = 0; i < frame.labels.size(); ++i) {
+    if (frame.labels[i] != handle || seg.labels[i] == 0) continue;
+    ++handle_points, ++parts[seg.labels[i]];
+    in_mug += seg.objects[i] == mug;
+  }
+  ASSERT_GE(handle_points, 200u);
+  const auto largest = std::max_element(parts.begin(), parts.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; });
+  EXPECT_GE(largest->second, 0.95 * static_cast<double>(handle_points));
+  EXPECT_GE(in_mug, 0.95 * static_cast<double>(handle_points));
+}
+
 TEST(RobotScene, BundledRecordingIdsStayStable) {
   const synthetic::TabletopScene scene;
   const std::unique_ptr<FrameSource> recording = open_recording(kRecording);
