@@ -69,7 +69,7 @@ std::vector<Labels> serial_stream_labels(const std::vector<const PointCloud*>& c
     for (const StageInfo& stage : kStages) {
       if (stage.stage != Stage::ids) segmenter().run_stage(stage.stage, work);
     }
-    segmenter().assign_ids(work, tracker);
+    segmenter().assign_ids(work, &tracker);
     labels.push_back(work.take_result().labels);
   }
   return labels;

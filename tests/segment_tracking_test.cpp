@@ -98,6 +98,40 @@ TEST(SegmentTracker, FirstFrameIdsFollowDenseOrderObjectsThenParts) {
   EXPECT_EQ(from_two.update(scene.frame(true)).object_ids, (Ids{2, 3, 4}));
 }
 
+// A frame on its own gets, without a tracker, the ids a new tracker's first
+// update gives it, with and without parts, from either first id.
+TEST(SegmentTracker, FirstFrameIdsWithoutATrackerAreThoseOfANewTracker) {
+  Scene scene;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3f at = kA + Eigen::Vector3f(0.15f * k, 0, 0);
+    const std::uint32_t object = scene.add(box(at, at + Eigen::Vector3f(0.05f, 0.1f, 0.05f)), 0, k + 1);
+    if (k % 2 == 0) scene.add(box(at + Eigen::Vector3f(0.06f, 0, 0), at + Eigen::Vector3f(0.1f, 0.1f, 0.05f)), object);
+  }
+  for (const bool with_parts : {false, true}) {
+    for (const std::uint32_t first : {1u, 2u}) {
+      SegmentTracker tracker(first);
+      const TrackedIds expected = tracker.update(scene.frame(with_parts));
+      const TrackedIds ids = first_frame_ids(scene.frame(with_parts), first);
+      EXPECT_EQ(ids.object_ids, expected.object_ids) << with_parts << " " << first;
+      EXPECT_EQ(ids.part_ids, expected.part_ids) << with_parts << " " << first;
+      EXPECT_EQ(ids.new_ids, expected.new_ids) << with_parts << " " << first;
+      EXPECT_TRUE(ids.gone_ids.empty());
+      EXPECT_EQ(ids.object_ids.size(), 4u);
+      EXPECT_EQ(ids.part_ids.size(), with_parts ? 4u : 0u);
+    }
+  }
+  // A label above its count, labels that do not match the points, ids beyond the last.
+  FrameSegments above = scene.frame(true);
+  above.part_count = 3;
+  EXPECT_THROW(first_frame_ids(above, 1), Error);
+  Labels short_labels(scene.points.size() - 1, 1);
+  FrameSegments mismatched = scene.frame();
+  mismatched.objects = &short_labels;
+  EXPECT_THROW(first_frame_ids(mismatched, 1), Error);
+  EXPECT_THROW(first_frame_ids(scene.frame(true), std::numeric_limits<std::uint32_t>::max() - 7), Error);
+  EXPECT_NO_THROW(first_frame_ids(scene.frame(true), std::numeric_limits<std::uint32_t>::max() - 8));
+}
+
 // 5 mm per frame for 30 frames: along the depth axis (a face square to the
 // motion crosses a cell layer every other frame, the worst case for cells) and
 // diagonally, next to a touching neighbour that stands still.

@@ -135,9 +135,9 @@ SceneSegmenter::SceneSegmenter(const SceneConfig& config) : config_(config), obj
   check_min_object_points(config_);
 }
 
-SegmentTracker SceneSegmenter::new_tracker() const {
-  return SegmentTracker(config_.objects.support.enabled ? kSupportId + 1 : 1);
-}
+SegmentTracker SceneSegmenter::new_tracker() const { return SegmentTracker(first_id()); }
+
+std::uint32_t SceneSegmenter::first_id() const { return config_.objects.support.enabled ? kSupportId + 1 : 1; }
 
 // The robot application on one frame (Sec. III.C, Fig. 5), one line per stage.
 SceneSegmentation SceneSegmenter::segment(const CloudView& cloud) const {
@@ -145,8 +145,7 @@ SceneSegmentation SceneSegmenter::segment(const CloudView& cloud) const {
   objects_.segment(w.objects);  // stages 0-8: the objects (Fig. 5 B)
   partition_objects(w);         // 9: their parts (Fig. 5 C)
   describe(w);                  // 10: geometry
-  SegmentTracker tracker = new_tracker();
-  assign_ids(w, tracker);       // 11: ids in label order
+  assign_ids(w, nullptr);       // 11: ids in label order
   return w.take_result();
 }
 
@@ -232,14 +231,15 @@ void SceneSegmenter::describe(SceneWork& w) const {
 }
 
 // Stage 11: ids matched to the previous frame's; labels and geometry renamed to them.
-void SceneSegmenter::assign_ids(SceneWork& w, SegmentTracker& tracker) const {
+void SceneSegmenter::assign_ids(SceneWork& w, SegmentTracker* tracker) const {
   const StageTimer timer(w.objects.result.times, Stage::ids);
   const bool two = config_.two_levels();
   const std::vector<std::uint32_t> offsets = w.grouped ? w.grouped->offsets : part_offsets(w.parts);
   const Labels parts = w.grouped ? std::move(w.grouped->labels) : config_.parts ? dense_part_labels(w, offsets) : Labels{};
   const SegmentationResult& level1 = w.objects.result;
-  TrackedIds ids = tracker.update({w.objects.cloud.points, &level1.labels, level1.segment_count,
-                                   two ? &parts : nullptr, offsets.back()});
+  const FrameSegments frame{w.objects.cloud.points, &level1.labels, level1.segment_count, two ? &parts : nullptr,
+                            offsets.back()};
+  TrackedIds ids = tracker ? tracker->update(frame) : first_frame_ids(frame, first_id());
   SceneSegmentation& r = w.result;
   r.support_id = w.objects.support ? kSupportId : 0;
   r.labels = to_ids(two ? parts : level1.labels, two ? ids.part_ids : ids.object_ids, w.objects, r.support_id);

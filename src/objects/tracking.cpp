@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -311,7 +312,29 @@ AbsorbedIds carry_absorbed(const AbsorbedIds& old, const std::vector<char>& recl
   return next_absorbed(old, keep, before, absorbed_now);
 }
 
+// What occupied_cells checks as it scans the points: no label above its count.
+void check_label_counts(const FrameSegments& frame) {
+  const auto above = [](const Labels* labels, std::uint32_t count) {
+    return labels != nullptr && std::any_of(labels->begin(), labels->end(), [&](std::uint32_t l) { return l > count; });
+  };
+  if (above(frame.objects, frame.object_count) || above(frame.parts, frame.part_count))
+    throw Error("segment tracking: a label above its count");
+}
+
 }  // namespace
+
+TrackedIds first_frame_ids(const FrameSegments& frame, std::uint32_t first_id) {
+  check_frame(frame);
+  check_label_counts(frame);
+  const std::uint32_t objects = frame.object_count, parts = frame.parts ? frame.part_count : 0;
+  if (std::uint64_t{first_id} + objects + parts > kNone) throw Error("segment tracking: the ids are used up");
+  TrackedIds out;
+  out.new_ids.resize(objects + parts);
+  std::iota(out.new_ids.begin(), out.new_ids.end(), first_id);
+  out.object_ids.assign(out.new_ids.begin(), out.new_ids.begin() + objects);
+  out.part_ids.assign(out.new_ids.begin() + objects, out.new_ids.end());
+  return out;
+}
 
 struct SegmentTracker::History {
   TrackedFrame previous;  // what the next frame is matched against

@@ -262,8 +262,11 @@ void Run::take(Frame frame) {
 void Run::deliver(const Message& message) {
   FrameInFlight& f = *message;
   const bool warming_up = f.sequence < warm_up_frames_;
-  SegmentTracker own = segmenter_.new_tracker();  // a batch of files: ids 1..K per frame
-  run_guarded(f, [&] { segmenter_.assign_ids(*f.work, source_.is_stream() && !warming_up ? tracker_ : own); });
+  // A warm-up frame's tracker is thrown away, but touches what the stream's will;
+  // a batch of files: ids 1..K per frame.
+  SegmentTracker thrown_away = segmenter_.new_tracker();
+  SegmentTracker* tracker = warming_up ? &thrown_away : source_.is_stream() ? &tracker_ : nullptr;
+  run_guarded(f, [&] { segmenter_.assign_ids(*f.work, tracker); });
   finish_frame(f);
   if (warming_up) {
     f.result = FrameResult{};

@@ -98,7 +98,9 @@ class SceneSegmenter {
 
   // Stage 11: ids matched to the previous frame's by `tracker`, the stream's
   // (one frame at a time, in frame order); labels and geometry renamed to them.
-  void assign_ids(SceneWork& work, SegmentTracker& tracker) const;
+  // Null: a frame on its own, ids as a new tracker's first frame gets them
+  // (first_frame_ids), in label order.
+  void assign_ids(SceneWork& work, SegmentTracker* tracker) const;
 
   // A tracker for a stream: ids after the support's.
   SegmentTracker new_tracker() const;
@@ -106,6 +108,7 @@ class SceneSegmenter {
   const SceneConfig& config() const { return config_; }
 
  private:
+  std::uint32_t first_id() const;  // a new tracker's first id: after the support's
   void partition_objects(SceneWork& work) const;
   void group_objects(SceneWork& work) const;
   void describe(SceneWork& work) const;

@@ -48,4 +48,11 @@ class SegmentTracker {
   std::unique_ptr<History> history_;
 };
 
+// The ids a new SegmentTracker(first_id) gives `frame` in its first update
+// (objects first_id.., then the parts; every id new, none gone), without the
+// cells a next frame would be matched against: for a frame on its own (one
+// cloud, a batch of files), where they would be thrown away. Throws
+// lccp::Error as update does.
+TrackedIds first_frame_ids(const FrameSegments& frame, std::uint32_t first_id);
+
 }  // namespace lccp
