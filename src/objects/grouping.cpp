@@ -154,12 +154,16 @@ bool sits_on(const PartShape& part, double height, const PartShape& other, doubl
 bool at_its_top(const PartShape& part, double height) { return height >= part.top - (part.top - part.bottom) / 3; }
 
 // Whether `part` rests on `other` across a junction: it meets other's upward
-// face below its own top (at_its_top), or sits on other's top (sits_on). A
-// part standing on the support rests on nothing else.
+// face below its own top (at_its_top) and not from below the face (what a
+// face bears lies on it: a pan's handle meets the wall just under its rim,
+// whose top faces up, and the wall's side of the junction is the higher), or
+// sits on other's top (sits_on). A part standing on the support rests on
+// nothing else.
 bool rests_on(const PartShape& part, Footing feet, double height, const PartShape& other, double other_height,
               bool upward_face) {
   if (feet != Footing::off) return false;
-  return (upward_face && !at_its_top(part, height)) || sits_on(part, height, other, other_height);
+  const bool on_face = upward_face && other_height <= height && !at_its_top(part, height);
+  return on_face || sits_on(part, height, other, other_height);
 }
 
 std::vector<Side> sides_of(const std::vector<Junction>& all, const std::vector<PartShape>& shapes,
