@@ -304,9 +304,11 @@ INSTANTIATE_TEST_SUITE_P(RobotBattery, RobotScene, testing::ValuesIn(test::robot
 std::uint32_t object_of_label(const SceneSegmentation& seg, const test::ContactScene& scene, std::uint32_t label) {
   std::map<std::uint32_t, std::size_t> votes;
   for (std::size_t i = 0; i < scene.truth.size(); ++i) {
-    if (scene.truth[i] == label && seg.objects[i] != 0 && seg.objects[i] != seg.support_id) ++votes[seg.objects[i]];
+    const std::uint32_t id = seg.objects[i];
+    if (scene.truth[i] == label && id != 0 && id != seg.support_id) ++votes[id];
   }
-  const auto most = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  const auto fewer = [](const auto& a, const auto& b) { return a.second < b.second; };
+  const auto most = std::max_element(votes.begin(), votes.end(), fewer);
   return most == votes.end() ? 0 : most->first;
 }
 
