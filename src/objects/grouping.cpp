@@ -295,8 +295,6 @@ std::vector<std::uint32_t> number_objects(ConcurrentUnionFind& sets, const std::
   return object;
 }
 
-}  // namespace
-
 // Parts a nearer object splits (detail::hidden_continuations), among those
 // that are not flat, are one.
 void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const detail::SeenDepth& seen,
@@ -346,6 +344,8 @@ void join_seen_over_rims(ConcurrentUnionFind& sets, const SegmentationWork& w, c
   }
   for (const auto& [inside, container] : detail::seen_over_rims(w, config, tops)) sets.unite(inside, container);
 }
+
+}  // namespace
 
 PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   const GroupingConfig& config = lccp.grouping;

@@ -264,8 +264,9 @@ void Run::deliver(const Message& message) {
   const bool warming_up = f.sequence < warm_up_frames_;
   // A warm-up frame's tracker is thrown away, but touches what the stream's will;
   // a batch of files: ids 1..K per frame.
-  SegmentTracker thrown_away = segmenter_.new_tracker();
-  SegmentTracker* tracker = warming_up ? &thrown_away : source_.is_stream() ? &tracker_ : nullptr;
+  std::optional<SegmentTracker> thrown_away;
+  if (warming_up) thrown_away.emplace(segmenter_.new_tracker());
+  SegmentTracker* tracker = warming_up ? &*thrown_away : source_.is_stream() ? &tracker_ : nullptr;
   run_guarded(f, [&] { segmenter_.assign_ids(*f.work, tracker); });
   finish_frame(f);
   if (warming_up) {
