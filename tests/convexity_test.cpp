@@ -24,10 +24,11 @@ Patch patch(double x, double y, double z, double nx, double ny, double nz) {
   return Patch{Eigen::Vector3f(float(x), float(y), float(z)), n.cast<float>()};
 }
 
-// beta 10, SC on, 60 / 25 / 0.25; PCL's smoothness check (beyond the paper) off
+// beta 10, SC on, 60 / 25 / 0.25; PCL's smoothness check and the corner check (beyond the paper) off
 ConvexityConfig paper_config() {
   ConvexityConfig config;
   config.smoothness_check = false;
+  config.corner_check = false;
   return config;
 }
 constexpr PatchSizes kP1Sizes{0.005f, 0.02f};                  // v and s of P1
@@ -385,6 +386,57 @@ TEST(SmoothnessCriterion, TheAngleExplainsTheOffsetOfABentSurface) {
   // The slack is in voxel sizes: threshold 3 at v = 5 mm allows 15 mm more, 25 mm in all.
   cfg.smoothness_threshold = 3.0f;
   EXPECT_TRUE(smoothness_criterion(p1, stepped, cfg, kP1Sizes));
+}
+
+// --- the corner check (beyond the paper) -------------------------------------------------
+
+// Two patches whose normals are 120 deg apart, n1 = (-0.5, 0, 0.866) and n2 = (1, 0, 0);
+// p2 at the origin. s = n1 x n2 = (0, 0.866, 0) and both d below have no y: theta = 90,
+// SC holds. The slack is 0.1 v = 0.5 mm at P1 (no sensor step).
+Patch limb() { return patch(0, 0, 0, 1, 0, 0); }
+Patch sharp_patch(double x, double z) { return patch(x, 0, z, -0.5, 0, std::sqrt(3.0) / 2); }
+
+TEST(CornerCriterion, BothFacesOfASharpConvexWedgeLieBehindEachOther) {
+  // A 60 deg wedge along y: p2's face runs from the edge down z, p1's from the edge
+  // along (-0.866, 0, -0.5), each centroid 1 cm from it: x1 = (-0.00866, 0, -0.005),
+  // x2 = (0, 0, -0.01). d = (-0.00866, 0, 0.005): d . n1 = 4.33 + 4.33 = 8.66 mm > -0.5 mm,
+  // d . n2 = -8.66 mm < 0.5 mm: a corner. CC: (n1 - n2) . d = 8.66 + 8.66 mm > 0.
+  ConvexityConfig cfg = paper_config();
+  cfg.corner_check = true;
+  const Patch p1 = sharp_patch(-0.01 * std::sqrt(3.0) / 2, -0.005), p2 = patch(0, 0, -0.01, 1, 0, 0);
+  EXPECT_NEAR(normal_angle_deg(p1, p2), 120.0f, 1e-3f);
+  EXPECT_TRUE(is_convex(p1, p2, cfg));
+  EXPECT_TRUE(corner_criterion(p1, p2, cfg, kP1Sizes));
+  EXPECT_TRUE(corner_criterion(p2, p1, cfg, kP1Sizes));
+}
+
+TEST(CornerCriterion, APatchPassingInFrontOfAnotherIsNoCorner) {
+  // p1 8 mm in front of p2's plane and 16 mm along z: d = (0.008, 0, 0.016), d . n2 = 8 mm,
+  // d . n1 = -0.004 + 0.013856 = 9.856 mm. Eq. (1): (n1 - n2) . d = 1.856 mm > 0, convex,
+  // and the step, min(9.856, 8) = 8 mm, is within |n1 x n2| s = 0.866 * 2 cm = 17.3 mm:
+  // smooth. Only the corner check cuts it: x1 lies 8 mm in front of p2's plane.
+  ConvexityConfig cfg = paper_config();
+  cfg.smoothness_check = true;
+  const Patch p1 = sharp_patch(0.008, 0.016), p2 = limb();
+  EXPECT_TRUE(is_convex(p1, p2, cfg));
+  EXPECT_TRUE(smoothness_criterion(p1, p2, cfg, kP1Sizes));
+  EXPECT_FALSE(corner_criterion(p1, p2, cfg, kP1Sizes));
+  EXPECT_FALSE(corner_criterion(p2, p1, cfg, kP1Sizes));
+  const std::vector<Eigen::Vector3f> c{p1.centroid, p2.centroid}, n{p1.normal, p2.normal};
+  EXPECT_EQ(classify_edges({{0, 1}}, c, n, cfg, kP1Sizes), std::vector<std::uint8_t>{1});
+  cfg.corner_check = true;
+  EXPECT_EQ(classify_edges({{0, 1}}, c, n, cfg, kP1Sizes), std::vector<std::uint8_t>{0});
+  // 0.4 mm in front (within the slack) is a corner: d = (0.0004, 0, 0.016).
+  EXPECT_TRUE(corner_criterion(sharp_patch(0.0004, 0.016), p2, cfg, kP1Sizes));
+}
+
+TEST(CornerCriterion, EdgesLessSharpThanARightAngleAreNotAsked) {
+  // n1 = (0, 0, 1), n2 tilted 60 deg from it (normals 60 deg apart), p1 far in front of
+  // p2's plane: the check leaves it to eq. (1)-(5).
+  ConvexityConfig cfg = paper_config();
+  cfg.corner_check = true;
+  const double t = deg2rad(60.0);
+  EXPECT_TRUE(corner_criterion(patch(0, 0, 0.05, 0, 0, 1), patch(0, 0, 0, std::sin(t), 0, std::cos(t)), cfg, kP1Sizes));
 }
 
 TEST(ClassifyEdges, EmptyEdgeList) {

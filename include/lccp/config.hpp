@@ -117,6 +117,13 @@ struct ConvexityConfig {
   // by more than their angle explains (a step) is not convex. Off in the paper.
   bool smoothness_check = true;
   float smoothness_threshold = 0.1f;  // the step's slack, in voxel sizes v (PCL's default)
+  // The corner check, beyond the paper: an edge whose normals are at least 90 deg
+  // apart (a corner sharper than a box's edge) is convex only if each patch lies
+  // behind the other's tangent plane, up to the smoothness check's slack, as both
+  // faces of a convex corner do. Eq. (1) asks only that x1 lie less far in front
+  // of plane 2 than x2 of plane 1; a patch passing in front of another's
+  // silhouette (a mug's handle before the body's limb) meets that too. Off in the paper.
+  bool corner_check = true;
 };
 
 // Support-plane removal before segmentation (paper Sec. III.C, Fig. 5: "an

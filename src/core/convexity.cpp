@@ -73,6 +73,13 @@ bool smoothness_criterion(const Patch& p1, const Patch& p2, const ConvexityConfi
   return step_distance_m(p1, p2) <= explained_m + smoothness_slack_m(p1, p2, config, sizes);
 }
 
+bool corner_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes) {
+  if (p1.normal.dot(p2.normal) > 0.0f) return true;  // less than 90 deg apart
+  const Eigen::Vector3f d = p1.centroid - p2.centroid;
+  const float slack = smoothness_slack_m(p1, p2, config, sizes);
+  return d.dot(p1.normal) > -slack && d.dot(p2.normal) < slack;
+}
+
 std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges, const std::vector<Eigen::Vector3f>& centroids,
                                          const std::vector<Eigen::Vector3f>& normals, const ConvexityConfig& config,
                                          const PatchSizes& sizes) {
@@ -80,7 +87,8 @@ std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges, const s
   tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {
     const Patch p1{centroids[edges[e].a], normals[edges[e].a]};
     const Patch p2{centroids[edges[e].b], normals[edges[e].b]};
-    convex[e] = is_convex(p1, p2, config) && (!config.smoothness_check || smoothness_criterion(p1, p2, config, sizes));
+    convex[e] = is_convex(p1, p2, config) && (!config.smoothness_check || smoothness_criterion(p1, p2, config, sizes)) &&
+                (!config.corner_check || corner_criterion(p1, p2, config, sizes));
   });
   return convex;
 }

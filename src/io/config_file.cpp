@@ -190,6 +190,8 @@ std::vector<Key> method_keys() {
       float_key("theta_max_deg", [](auto& c) -> auto& { return c.convexity.theta_max_deg; }, "SC sigmoid maximum (degrees), eq. 3"),
       bool_key("smoothness_check", [](auto& c) -> auto& { return c.convexity.smoothness_check; },
                "PCL's step test beyond the paper: cut edges between offset patches (true/false)"),
+      bool_key("corner_check", [](auto& c) -> auto& { return c.convexity.corner_check; },
+               "beyond the paper: a convex edge at least 90 deg sharp needs each patch behind the other's plane (true/false)"),
       float_key("smoothness_threshold", [](auto& c) -> auto& { return c.convexity.smoothness_threshold; },
                 "smoothness check's slack, in voxel sizes v (PCL's default 0.1)"),
       float_key("beta_off_deg", [](auto& c) -> auto& { return c.convexity.beta_off_deg; }, "SC sigmoid offset (degrees), eq. 3"),

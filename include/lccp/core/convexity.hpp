@@ -43,8 +43,12 @@ float step_distance_m(const Patch& p1, const Patch& p2);
 // the patches' angle explains over a seed spacing, plus a slack: smoothness_threshold * v,
 // or half the sensor's depth step at the patches' mean depth where that is larger.
 bool smoothness_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes);
+// The corner check (beyond the paper, ConvexityConfig::corner_check): true below
+// 90 deg between the normals; otherwise d . n1 > -slack and d . n2 < slack, d =
+// x1 - x2, slack as in smoothness_criterion: each centroid behind the other's plane.
+bool corner_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config, const PatchSizes& sizes);
 
-// One flag per edge (1 = convex: eq. (5), and smooth if the check is on),
+// One flag per edge (1 = convex: eq. (5), and smooth and a corner if those checks are on),
 // computed in parallel without locks.
 std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges,
                                          const std::vector<Eigen::Vector3f>& centroids,
