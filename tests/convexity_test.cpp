@@ -396,6 +396,27 @@ TEST(SmoothnessCriterion, TheAngleExplainsTheOffsetOfABentSurface) {
 Patch limb() { return patch(0, 0, 0, 1, 0, 0); }
 Patch sharp_patch(double x, double z) { return patch(x, 0, z, -0.5, 0, std::sqrt(3.0) / 2); }
 
+// Eq. (1)'s measure, by hand: a box's convex edge (top face p1 at x = -1 cm facing
+// +z, side face p2 1 cm below the edge facing +x): d_hat = (-1, 0, 1) / sqrt(2),
+// (n1 - n2) . d_hat = ((-1, 0, 1) . (-1, 0, 1)) / sqrt(2) = sqrt(2). The same
+// whichever patch is first; a wall rising from the top's edge (1 cm above it, facing -x,
+// back over the top: a concave corner) gives -sqrt(2);
+// two patches of one plane give 0. edge_convexity gives it per edge.
+TEST(ConvexityMeasure, ConvexPositiveConcaveNegativeFlatZero) {
+  const Patch top = patch(-0.01, 0, 0, 0, 0, 1), side = patch(0, 0, -0.01, 1, 0, 0);
+  const Patch inner = patch(0, 0, 0.01, -1, 0, 0), beside = patch(-0.02, 0, 0, 0, 0, 1);
+  EXPECT_NEAR(convexity_measure(top, side), std::sqrt(2.0f), 1e-5f);
+  EXPECT_NEAR(convexity_measure(side, top), std::sqrt(2.0f), 1e-5f);
+  EXPECT_NEAR(convexity_measure(top, inner), -std::sqrt(2.0f), 1e-5f);
+  EXPECT_NEAR(convexity_measure(top, beside), 0.0f, 1e-6f);
+  const std::vector<Eigen::Vector3f> centroids = {top.centroid, side.centroid, inner.centroid};
+  const std::vector<Eigen::Vector3f> normals = {top.normal, side.normal, inner.normal};
+  const std::vector<float> measure = edge_convexity({{0, 1}, {0, 2}}, centroids, normals);
+  ASSERT_EQ(measure.size(), 2u);
+  EXPECT_NEAR(measure[0], std::sqrt(2.0f), 1e-5f);
+  EXPECT_NEAR(measure[1], -std::sqrt(2.0f), 1e-5f);
+}
+
 TEST(CornerCriterion, BothFacesOfASharpConvexWedgeLieBehindEachOther) {
   // A 60 deg wedge along y: p2's face runs from the edge down z, p1's from the edge
   // along (-0.866, 0, -0.5), each centroid 1 cm from it: x1 = (-0.00866, 0, -0.005),

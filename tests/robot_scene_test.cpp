@@ -8,11 +8,9 @@
 //   PartGroups::part) with its centroid
 //   within 1 cm of the true handle's, in the frames where >= 200 handle points
 //   are visible, and where it is when it is not (in the body's part, or in an
-//   object apart from the mug's). The robot issue asks for 95 % and 90 %; that
-//   is not reached yet (perf/RESULTS.md, "Issue 33": P1 often cuts the handle in
-//   two, or takes it into the body's part), so the figures are printed, and only
-//   the first share is held to what it is today, rounded down (a floor against
-//   losing the handle held behind its mug: detail::held_behind).
+//   object apart from the mug's). The robot issue asks for 95 % and 90 % on the
+//   bundled recording; the rendered period is held to what it gives today,
+//   rounded down (perf/RESULTS.md, "Issue 33").
 // Run on the bundled recording and on the scene's whole 10 s period rendered in
 // process; each prints its figures (perf/RESULTS.md quotes them).
 #include <cstdio>
@@ -156,7 +154,13 @@ RobotFigures run(FrameSource& source, const synthetic::TabletopScene& scene) {
   return figures;
 }
 
-void report_and_check(const char* name, const RobotFigures& f, double min_handle_share) {
+// The least shares of the handle frames where the handle is its own part of the
+// mug object, and where that part's centroid is also within 1 cm of the truth.
+struct HandleShares {
+  double own_part = 0, found = 0;
+};
+
+void report_and_check(const char* name, const RobotFigures& f, HandleShares least) {
   std::printf("%s: handle visible (>= %zu points) in %d frames; its own part of the mug in %d (%.1f %%); "
               "and centroid within 1 cm in %d (%.1f %%), worst %.1f mm; in the body's part in %d, in another "
               "object in %d; ids kept in %d of %d pairs (%.2f %%)\n",
@@ -167,7 +171,8 @@ void report_and_check(const char* name, const RobotFigures& f, double min_handle
   ASSERT_GT(f.handle_frames, 0);
   ASSERT_GT(f.id_pairs, 0);
   EXPECT_GE(f.id_kept, 0.97 * f.id_pairs);
-  EXPECT_GE(f.handle_own_part, min_handle_share * f.handle_frames);
+  EXPECT_GE(f.handle_own_part, least.own_part * f.handle_frames);
+  EXPECT_GE(f.handle_found, least.found * f.handle_frames);
 }
 
 // The scene's frames 0..n-1 as a sensor would deliver them, timestamps at 30 Hz.
@@ -254,6 +259,19 @@ TEST(RobotScene, AHandleCutInTwoIsOnePartOfTheMug) {
             id_of_label(seg.objects, frame.labels, body, seg.support_id));
 }
 
+// Frame 41 of the scene: the mug's handle ends behind the mug's silhouette,
+// where the mug's points nearest its ends are not of the part that stands on
+// the support. The handle is held behind the mug object, whichever of its
+// parts is nearest (detail::held_behind); before, only a standing part could
+// hold it, and most of the handle was an object of its own.
+TEST(RobotScene, AHandleHeldBehindAnyPartOfTheMugIsOfTheMug) {
+  const auto [frame, seg, handle, body] = mug_frame(41);
+  const std::uint32_t mug = id_of_label(seg.objects, frame.labels, body, seg.support_id);
+  EXPECT_NE(id_of_label(seg.labels, frame.labels, handle, seg.support_id),
+            id_of_label(seg.labels, frame.labels, body, seg.support_id));
+  EXPECT_EQ(id_of_label(seg.objects, frame.labels, handle, seg.support_id), mug);
+}
+
 // Frame 38 of the scene: P1 cuts the mug's handle in two and neither half
 // meets the body where the sensor sees it. The upper half vanishes behind the
 // mug (held_behind); the lower half, 18 mm above the table, meets only the
@@ -281,13 +299,13 @@ TEST(RobotScene, AHandleHalfMeetingOnlyTheHeldHalfIsOfTheMug) {
 TEST(RobotScene, BundledRecordingIdsStayStable) {
   const synthetic::TabletopScene scene;
   const std::unique_ptr<FrameSource> recording = open_recording(kRecording);
-  report_and_check("recording", run(*recording, scene), 0.85);  // 40 of 44 frames at the floor's commit
+  report_and_check("recording", run(*recording, scene), {0.95, 0.90});  // the issue's shares
 }
 
 TEST(RobotScene, WholeScenePeriodIdsStayStable) {
   const synthetic::TabletopScene scene;
   RenderedScene frames(scene, 300);  // 10 s: every motion of the scene once
-  report_and_check("rendered 300 frames", run(frames, scene), 0.70);  // 116 of 160
+  report_and_check("rendered 300 frames", run(frames, scene), {0.85, 0.80});  // 136 and 130 of 160
 }
 
 }  // namespace

@@ -203,6 +203,47 @@ TEST(MergeSmallSegments, NoSegmentIsNeitherMergedNorMergedInto) {
   EXPECT_EQ(g.seg, (std::vector<std::uint32_t>{1, 1, 1, 1, 1, 2, 2, 2, 1, 0, 0, 0, 0, 0, 0}));
 }
 
+// Per edge of `edges`: 0 (flat), but `value` for the edges in `marked`.
+std::vector<float> convexity_but(const std::vector<Edge>& edges, const std::vector<Edge>& marked, float value) {
+  std::vector<float> convexity(edges.size(), 0.0f);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    for (const Edge& m : marked) {
+      if (edges[e].a == m.a && edges[e].b == m.b) convexity[e] = value;
+    }
+  }
+  return convexity;
+}
+
+TEST(MergeSmallSegments, SmallJoinsTheNeighbourAcrossItsMostConvexEdge) {
+  // {8} meets the 5 across a deep concavity (edge 4-8, eq. (1)'s measure -1) and the 3
+  // across a flat edge (5-8, 0): n_filter 2, it joins the 3, though the 5 is larger.
+  SmallBetweenTwo g;
+  merge_small_segments(g.seg, g.edges, 2, convexity_but(g.edges, {{4, 8}}, -1.0f));
+  EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 5}));
+  // Both edges alike: the larger, as the paper's filter gives it.
+  g = SmallBetweenTwo{};
+  merge_small_segments(g.seg, g.edges, 2, convexity_but(g.edges, {}, 0.0f));
+  EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 0}));
+}
+
+TEST(MergeSmallSegments, AFragmentFollowsTheFragmentItContinues) {
+  // A = {0..5} (6 sv) - B = {6, 7, 8} (3) - C = {9} (1) - D = {10..19} (10) in a chain;
+  // C meets D across a deep concavity, every other edge is flat. n_filter 3: C, visited
+  // first, is most convexly joined to B, which is small: it waits; B joins A (flat,
+  // not small); then C meets A through B's edge and joins it, not D, its largest neighbour.
+  const std::vector<std::uint32_t> start = {0, 0, 0, 0, 0, 0, 6, 6, 6, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10};
+  std::vector<Edge> edges = chain_edges(0, 19);
+  sort_edges(edges);
+  std::vector<std::uint32_t> seg = start;
+  merge_small_segments(seg, edges, 3, convexity_but(edges, {{9, 10}}, -1.0f));
+  EXPECT_EQ(canonical(seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 10, 10, 10, 10, 10, 10,
+                                                        10, 10, 10}));
+  // The paper's filter gives C to D, then B, which now meets D, to D too.
+  seg = start;
+  merge_small_segments(seg, edges, 3);
+  EXPECT_EQ(canonical(seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 0, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6}));
+}
+
 TEST(MergeSmallSegments, LongChainOfSingletonsCollapses) {
   // 0 - 1 - 2 - ... - 9, every supervoxel its own segment, n_filter 3: merging must be
   // repeated until no small segment with a neighbour is left -> with 10 supervoxels in a

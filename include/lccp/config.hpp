@@ -178,6 +178,19 @@ struct RegionConfig {
 
 struct FilterConfig {
   std::uint32_t n_filter_supervoxels = 3;  // segments of <= this many supervoxels merge (A.4)
+  // Beyond the paper: before A.4's rule (the largest neighbour), each small
+  // segment joins the neighbour it meets across its most convex edge, by eq.
+  // (1)'s measure (n1 - n2) . d_hat, when that neighbour is not small itself
+  // (otherwise it waits, and follows once that neighbour has joined a larger
+  // one). A small segment is a patch that noise cut off by edges eq. (5) calls
+  // not convex; LCCP's premise is that concave edges part surfaces, and the
+  // largest neighbour may lie across a deep concavity: a piece of a mug's
+  // handle, 2 voxels thick at P1, meets the body at a measure of -1.1 to -1.3
+  // and the rest of the handle at -0.02 to -0.01. Off by default and in P1 and
+  // P2, where it moved the mOSD scores by less than their spread between the
+  // test and the learn scenes; on in config/robot.yaml, whose objects are built
+  // from the parts (perf/RESULTS.md, "Session of 2026-12-06 23:27").
+  bool by_convexity = false;
   // Beyond the paper, at the object level only (SceneSegmenter, after stage 8):
   // an object of fewer points than this is no object: its points get label 0,
   // unassigned, as points outside the region do. Merging them is not an

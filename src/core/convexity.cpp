@@ -39,10 +39,14 @@ float sanity_angle_deg(const Patch& p1, const Patch& p2) {
   return angle_deg(std::abs(d_hat.dot(s / s_length)));
 }
 
+float convexity_measure(const Patch& p1, const Patch& p2) {
+  // Eq. (1): (n1 - n2) . d_hat
+  return (p1.normal - p2.normal).dot(centroid_direction(p1, p2));
+}
+
 bool convexity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config) {
   // Eq. (1): (n1 - n2) . d_hat > 0, or beta < beta_thresh.
-  const bool convex = (p1.normal - p2.normal).dot(centroid_direction(p1, p2)) > 0.0f;
-  return convex || normal_angle_deg(p1, p2) < config.beta_thresh_deg;
+  return convexity_measure(p1, p2) > 0.0f || normal_angle_deg(p1, p2) < config.beta_thresh_deg;
 }
 
 bool sanity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config) {
@@ -91,6 +95,15 @@ std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges, const s
                 (!config.corner_check || corner_criterion(p1, p2, config, sizes));
   });
   return convex;
+}
+
+std::vector<float> edge_convexity(const std::vector<Edge>& edges, const std::vector<Eigen::Vector3f>& centroids,
+                                  const std::vector<Eigen::Vector3f>& normals) {
+  std::vector<float> measure(edges.size());
+  tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t e) {
+    measure[e] = convexity_measure({centroids[edges[e].a], normals[edges[e].a]}, {centroids[edges[e].b], normals[edges[e].b]});
+  });
+  return measure;
 }
 
 }  // namespace lccp

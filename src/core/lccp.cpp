@@ -207,7 +207,10 @@ void LccpSegmenter::merge_convex(SegmentationWork& w) const {
 void LccpSegmenter::filter_small(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::filter);
   settle_support(w, config_.support);
-  merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels);
+  const std::vector<float> convexity = config_.filter.by_convexity
+                                           ? edge_convexity(w.edges, w.supervoxels.centroids, w.supervoxels.normals)
+                                           : std::vector<float>{};
+  merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels, convexity);
   w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
   w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel, w.support);
   w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());

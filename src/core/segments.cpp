@@ -50,6 +50,12 @@ SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
   return nodes;
 }
 
+// A neighbour across one edge, and that edge's convexity (eq. (1)'s measure).
+struct Neighbor {
+  std::uint32_t node = 0;
+  float convexity = 0.0f;
+};
+
 // Segments as dense nodes with sizes (in supervoxels) and neighbour rows: one
 // row per node as the edges give it (with repeats), grouped in one array
 // (lccp/core/grouped.hpp), so that no node owns an allocation. A node merged
@@ -62,7 +68,7 @@ struct SegmentGraph {
   SegmentNodes nodes;
   std::vector<std::uint32_t> node_of_supervoxel;
   std::vector<std::uint32_t> size;
-  Grouped<std::uint32_t> neighbors;        // per node: its neighbour nodes (updated to live ones)
+  Grouped<Neighbor> neighbors;             // per node: its neighbour nodes (updated to live ones)
   std::vector<std::uint32_t> merged_into;  // node -> node it merged into (itself if alive)
   std::vector<std::uint32_t> next_row;     // per node: the next node on its chain of rows (kEnd: none)
   std::vector<std::uint32_t> last_row;     // per live node: the last node on its chain
@@ -79,17 +85,19 @@ struct SegmentGraph {
 };
 
 // The nodes' neighbour rows in edge order.
-Grouped<std::uint32_t> neighbor_rows(const std::vector<std::uint32_t>& node_of, const std::vector<Edge>& edges,
-                                     std::size_t count) {
-  return group_by_key<std::uint32_t>(count, [&](auto emit) {
-    for (const Edge& e : edges) {
-      const std::uint32_t a = node_of[e.a], b = node_of[e.b];
-      if (a != b) emit(a, b), emit(b, a);
+Grouped<Neighbor> neighbor_rows(const std::vector<std::uint32_t>& node_of, const std::vector<Edge>& edges,
+                                const std::vector<float>& convexity, std::size_t count) {
+  return group_by_key<Neighbor>(count, [&](auto emit) {
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const std::uint32_t a = node_of[edges[e].a], b = node_of[edges[e].b];
+      const float c = convexity.empty() ? 0.0f : convexity[e];
+      if (a != b) emit(a, Neighbor{b, c}), emit(b, Neighbor{a, c});
     }
   });
 }
 
-SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, const std::vector<Edge>& edges) {
+SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, const std::vector<Edge>& edges,
+                                 const std::vector<float>& convexity) {
   SegmentGraph g;
   g.nodes = segment_nodes(segment_of);
   const std::size_t count = g.nodes.ids.size();
@@ -101,7 +109,7 @@ SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, c
       g.node_of_supervoxel[*sv] = node;
     }
   }
-  g.neighbors = neighbor_rows(g.node_of_supervoxel, edges, count);
+  g.neighbors = neighbor_rows(g.node_of_supervoxel, edges, convexity, count);
   g.merged_into.resize(count);
   std::iota(g.merged_into.begin(), g.merged_into.end(), 0u);
   g.next_row.assign(count, SegmentGraph::kEnd);
@@ -109,21 +117,33 @@ SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, c
   return g;
 }
 
-// The largest live neighbour of a live node (ties: smaller segment id); none if isolated.
-std::optional<std::uint32_t> largest_neighbor(SegmentGraph& g, std::uint32_t node) {
+// Which neighbour a small segment joins (A.4): its largest, or by_convexity
+// the one across its most convex edge (each ranked by its size next, then by
+// the smaller node).
+enum class Rule { largest, by_convexity };
+
+// The live neighbour of a live node that `rule` ranks first; none if isolated,
+// and by_convexity none if that neighbour is small (the node waits for it).
+std::optional<std::uint32_t> merge_target(SegmentGraph& g, std::uint32_t node, std::uint32_t n_filter, Rule rule) {
   std::optional<std::uint32_t> best;
+  float best_convexity = 0.0f;
   for (std::uint32_t row = node; row != SegmentGraph::kEnd; row = g.next_row[row]) {
     for (std::uint32_t k = g.neighbors.offsets[row]; k < g.neighbors.offsets[row + 1]; ++k) {
-      const std::uint32_t n = g.neighbors.items[k] = g.alive(g.neighbors.items[k]);
+      Neighbor& m = g.neighbors.items[k];
+      const std::uint32_t n = m.node = g.alive(m.node);
       if (n == node || g.nodes.ids[n] == kNoSegment) continue;
-      if (!best || std::tie(g.size[*best], n) < std::tie(g.size[n], *best)) best = n;
+      const float c = rule == Rule::by_convexity ? m.convexity : 0.0f;
+      if (!best || std::tuple(c, g.size[n], *best) > std::tuple(best_convexity, g.size[*best], n)) {
+        best = n, best_convexity = c;
+      }
     }
   }
+  if (rule == Rule::by_convexity && best && g.size[*best] <= n_filter) return std::nullopt;
   return best;
 }
 
 // One sweep over the small segments, smallest first; true if anything merged.
-bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter) {
+bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter, Rule rule) {
   std::vector<std::uint32_t> small;
   for (std::uint32_t node = 0; node < g.size.size(); ++node) {
     if (g.alive(node) == node && g.size[node] <= n_filter && g.nodes.ids[node] != kNoSegment) small.push_back(node);
@@ -132,7 +152,7 @@ bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter) {
   bool merged = false;
   for (std::uint32_t node : small) {
     if (g.alive(node) != node || g.size[node] > n_filter) continue;
-    const auto target = largest_neighbor(g, node);
+    const auto target = merge_target(g, node, n_filter, rule);
     if (!target) continue;
     g.merge(node, *target);
     merged = true;
@@ -143,10 +163,12 @@ bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter) {
 }  // namespace
 
 void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, const std::vector<Edge>& edges,
-                          std::uint32_t n_filter) {
+                          std::uint32_t n_filter, const std::vector<float>& convexity) {
   if (n_filter == 0 || segment_of_supervoxel.empty()) return;
-  SegmentGraph g = build_segment_graph(segment_of_supervoxel, edges);
-  while (merge_sweep(g, n_filter)) {
+  SegmentGraph g = build_segment_graph(segment_of_supervoxel, edges, convexity);
+  while (!convexity.empty() && merge_sweep(g, n_filter, Rule::by_convexity)) {
+  }
+  while (merge_sweep(g, n_filter, Rule::largest)) {
   }
   for (std::uint32_t sv = 0; sv < segment_of_supervoxel.size(); ++sv) {
     segment_of_supervoxel[sv] = static_cast<std::uint32_t>(g.nodes.ids[g.alive(g.node_of_supervoxel[sv])]);

@@ -198,6 +198,8 @@ std::vector<Key> method_keys() {
       float_key("sigmoid_slope_per_deg", [](auto& c) -> auto& { return c.convexity.sigmoid_slope_per_deg; }, "SC sigmoid slope a (1/degree), eq. 3"),
       count_key("n_filter_supervoxels", [](auto& c) -> auto& { return c.filter.n_filter_supervoxels; },
                 "segments of <= this many supervoxels merge into a neighbour (A.4)"),
+      bool_key("filter_by_convexity", [](auto& c) -> auto& { return c.filter.by_convexity; },
+               "beyond the paper: A.4 first joins a small segment to its neighbour across its most convex edge (true/false)"),
       count_key("min_object_points", [](auto& c) -> auto& { return c.filter.min_object_points; },
                 "objects of fewer points are dropped: their points get label 0 (0: keep all)"),
   };

@@ -310,24 +310,28 @@ void join_hidden(ConcurrentUnionFind& sets, const SegmentationWork& w, const det
 }
 
 // Parts off the support in no object with a body (loose: hang_clusters found
-// none they hang off), each joined to the body that holds it behind itself
-// (detail::held_behind), and with it the loose parts it meets, and those they
-// meet: a loose piece that rests on another (a handle cut in two, one half on
-// the other) has no support but what holds that one.
+// none they hang off), each joined to the object with a body that holds it
+// behind itself (detail::held_behind), and with it the loose parts it meets,
+// and those they meet: a loose piece that rests on another (a handle cut in
+// two, one half on the other) has no support but what holds that one.
 void join_held_behind(ConcurrentUnionFind& sets, const SegmentationWork& w, const detail::SeenDepth& seen,
                       const LccpConfig& config, const std::vector<std::uint8_t>& bodies,
                       const std::vector<Footing>& feet, const std::vector<Side>& sides) {
   const auto count = static_cast<std::uint32_t>(feet.size());
   std::vector<std::uint8_t> with_body(count, 0), loose(count, 0);
   for (std::uint32_t k = 0; k < count; ++k) with_body[sets.find(k)] |= bodies[k];
-  for (std::uint32_t k = 0; k < count; ++k) loose[k] = feet[k] == Footing::off && !with_body[sets.find(k)];
+  std::vector<std::uint32_t> object_of(count, count);  // per part its object's set, if that has a body
+  for (std::uint32_t k = 0; k < count; ++k) {
+    loose[k] = feet[k] == Footing::off && !with_body[sets.find(k)];
+    if (with_body[sets.find(k)]) object_of[k] = sets.find(k);
+  }
   ConcurrentUnionFind pieces(count);  // loose parts that meet
   for (const Side& s : sides) {
     if (loose[s.part] && loose[s.other]) pieces.unite(s.part, s.other);
   }
-  std::vector<std::uint32_t> holder(count, count);  // per set of pieces: the body holding one of them
-  for (const auto& [part, body] : detail::held_behind(w, seen, config, loose, bodies)) {
-    if (holder[pieces.find(part)] == count) holder[pieces.find(part)] = body;
+  std::vector<std::uint32_t> holder(count, count);  // per set of pieces: the object holding one of them
+  for (const auto& [part, object] : detail::held_behind(w, seen, config, loose, object_of)) {
+    if (holder[pieces.find(part)] == count) holder[pieces.find(part)] = object;
   }
   for (std::uint32_t k = 0; k < count; ++k) {
     if (loose[k] && holder[pieces.find(k)] != count) sets.unite(k, holder[pieces.find(k)]);

@@ -291,33 +291,35 @@ void for_each_neighbour_pair(const CloudView& cloud, Visit visit) {
   }
 }
 
-// Where a loose part meets a nearer body in the image: the part's pixel of a
-// pair of 4-neighbouring pixels whose other pixel is the body's, nearer by at
-// most max_gap. Sorted by (part, body, pixel).
+// Where a loose part meets a nearer object in the image: the part's pixel of
+// a pair of 4-neighbouring pixels whose other pixel is one of the object's
+// parts, nearer by at most max_gap. Sorted by (part, object, pixel).
 struct Border {
-  std::uint32_t part = 0, body = 0;  // 0-based
-  std::size_t pixel = 0;             // the part's
+  std::uint32_t part = 0, object = 0;  // 0-based part; object as object_of gives it
+  std::size_t pixel = 0;               // the part's
   friend auto operator<=>(const Border&, const Border&) = default;
 };
 
 std::vector<Border> borders_behind(const SegmentationWork& w, const std::vector<std::uint8_t>& loose,
-                                   const std::vector<std::uint8_t>& bodies, float max_gap) {
+                                   const std::vector<std::uint32_t>& object_of, float max_gap) {
   const Labels& labels = w.result.labels;
+  const auto none = static_cast<std::uint32_t>(object_of.size());
   std::vector<Border> borders;
-  for_each_neighbour_pair(w.cloud, [&](std::size_t i, std::size_t j, float, float) {  // i's loose part behind j's body
+  for_each_neighbour_pair(w.cloud, [&](std::size_t i, std::size_t j, float, float) {  // i's loose part behind j's object
     const std::uint32_t a = labels[i], b = labels[j];
-    if (a == 0 || !loose[a - 1] || b == 0 || !bodies[b - 1]) return;
+    if (a == 0 || !loose[a - 1] || b == 0 || object_of[b - 1] == none) return;
     const float behind = w.cloud.points[i].z() - w.cloud.points[j].z();
-    if (behind > 0.0f && behind <= max_gap) borders.push_back({a - 1, b - 1, i});
+    if (behind > 0.0f && behind <= max_gap) borders.push_back({a - 1, object_of[b - 1], i});
   });
   std::sort(borders.begin(), borders.end());
   return borders;
 }
 
-// Whether a point of part `body` (label - 1) lies within `reach` of pixel i's
-// point, among the pixels within reach of it (metres, as the image shows them
-// at i's depth: reach f / z pixels each way).
-bool body_within_reach(const SegmentationWork& w, std::size_t i, std::uint32_t body, float reach, float focal_px) {
+// Whether a point of `object` (as object_of gives parts' objects) lies within
+// `reach` of pixel i's point, among the pixels within reach of it (metres, as
+// the image shows them at i's depth: reach f / z pixels each way).
+bool object_within_reach(const SegmentationWork& w, std::size_t i, const std::vector<std::uint32_t>& object_of,
+                         std::uint32_t object, float reach, float focal_px) {
   const Vec3& p = w.cloud.points[i];
   const auto width = static_cast<long>(w.cloud.width), height = static_cast<long>(w.cloud.height);
   const long r = static_cast<long>(std::ceil(reach * focal_px / p.z()));
@@ -325,7 +327,8 @@ bool body_within_reach(const SegmentationWork& w, std::size_t i, std::uint32_t b
   for (long v = std::max(0L, y - r); v <= std::min(height - 1, y + r); ++v) {
     for (long u = std::max(0L, x - r); u <= std::min(width - 1, x + r); ++u) {
       const auto j = static_cast<std::size_t>(v * width + u);
-      if (w.result.labels[j] == body + 1 && (w.cloud.points[j] - p).norm() <= reach) return true;
+      const std::uint32_t label = w.result.labels[j];
+      if (label != 0 && object_of[label - 1] == object && (w.cloud.points[j] - p).norm() <= reach) return true;
     }
   }
   return false;
@@ -423,27 +426,28 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
 std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const SegmentationWork& w, const SeenDepth& seen,
                                                                  const LccpConfig& config,
                                                                  const std::vector<std::uint8_t>& loose,
-                                                                 const std::vector<std::uint8_t>& bodies) {
+                                                                 const std::vector<std::uint32_t>& object_of) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> held;
   const bool any_loose = std::find(loose.begin(), loose.end(), 1) != loose.end();
   if (!any_loose || !w.cloud.organized() || !w.support) return held;
-  const std::vector<Border> borders = borders_behind(w, loose, bodies, config.grouping.occluded_gap_m);
+  const std::vector<Border> borders = borders_behind(w, loose, object_of, config.grouping.occluded_gap_m);
   if (borders.empty()) return held;
   const Grouped<std::uint32_t> members = supervoxels_of_parts(w);
   const float reach = config.supervoxels.seed_size_m;
   std::size_t most = 0;
   for (std::size_t first = 0, last = 0; first < borders.size(); first = last) {
-    const std::uint32_t part = borders[first].part, body = borders[first].body;
-    bool near = false;  // each border pixel once (a pixel may border the body on two sides)
-    for (last = first; last < borders.size() && borders[last].part == part && borders[last].body == body; ++last) {
+    const std::uint32_t part = borders[first].part, object = borders[first].object;
+    bool near = false;  // each border pixel once (a pixel may border the object on two sides)
+    for (last = first; last < borders.size() && borders[last].part == part && borders[last].object == object; ++last) {
       const bool again = last > first && borders[last].pixel == borders[last - 1].pixel;
-      near = near || (!again && body_within_reach(w, borders[last].pixel, body, reach, config.sensor.focal_px));
+      near = near ||
+             (!again && object_within_reach(w, borders[last].pixel, object_of, object, reach, config.sensor.focal_px));
     }
     if (!near || !support_seen_under(w, seen, members[part], config)) continue;
     if (held.empty() || held.back().first != part) {
-      held.emplace_back(part, body), most = last - first;
+      held.emplace_back(part, object), most = last - first;
     } else if (last - first > most) {
-      held.back().second = body, most = last - first;
+      held.back().second = object, most = last - first;
     }
   }
   return held;

@@ -60,20 +60,22 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> hidden_continuations(
     const SegmentationWork& work, const SeenDepth& seen, const LccpConfig& config,
     const std::vector<std::uint8_t>& eligible, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& adjacent);
 
-// Pairs (part, body) of parts (0-based labels - 1) of work.result: each part
-// `loose` (per part: off the support, resting on nothing, in no object with a
-// body) that the sensor sees vanish behind a body (`bodies`, per part), which
+// Pairs (part, object) for parts (0-based labels - 1) of work.result: each
+// part `loose` (per part: off the support, resting on nothing, in no object
+// with a body) that the sensor sees vanish behind an object with a body
+// (object_of: per part its object, object_of.size() if it is in none), which
 // holds it out of sight (a mug's handle whose ends meet the mug behind its
-// silhouette). Organized clouds only: in the image the part borders the body
-// where the body is nearer, by at most occluded_gap_m; near that border their
-// points come within one seed spacing (were the junction seen, their patches
-// would be adjacent); and the sensor sees the support under most of the part's
-// supervoxels (it stands on no foot of its own that the body hides). Per loose
-// part, the body it borders along the most pixel pairs.
+// silhouette, whichever of the mug's parts is nearest them). Organized clouds
+// only: in the image the part borders the object where the object is nearer,
+// by at most occluded_gap_m; near that border their points come within one
+// seed spacing (were the junction seen, their patches would be adjacent); and
+// the sensor sees the support under most of the part's supervoxels (it stands
+// on no foot of its own that the object hides). Per loose part, the object it
+// borders along the most pixel pairs.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> held_behind(const SegmentationWork& work, const SeenDepth& seen,
                                                                  const LccpConfig& config,
                                                                  const std::vector<std::uint8_t>& loose,
-                                                                 const std::vector<std::uint8_t>& bodies);
+                                                                 const std::vector<std::uint32_t>& object_of);
 
 // Pairs (inside, container) of parts (0-based labels - 1) of work.result: the
 // inside of an open container (a bowl's or a pot's inner wall and floor) that

@@ -22,6 +22,10 @@ float sanity_threshold_deg(float beta_deg, const ConvexityConfig& config);
 // Eq. (2): angle between d = x1 - x2 and s = n1 x n2, folded to [0, 90] degrees;
 // 90 when s vanishes (parallel normals: no singular configuration).
 float sanity_angle_deg(const Patch& p1, const Patch& p2);
+// Eq. (1)'s left side: (n1 - n2) . d_hat, d_hat = (x1 - x2) / |x1 - x2|;
+// positive where the patches meet convexly, negative where concavely, the
+// same whichever patch is first.
+float convexity_measure(const Patch& p1, const Patch& p2);
 // Eq. (1): (n1 - n2) . d_hat > 0 or beta < beta_thresh.
 bool convexity_criterion(const Patch& p1, const Patch& p2, const ConvexityConfig& config);
 // Eq. (4): theta > theta_thresh(beta).
@@ -54,5 +58,11 @@ std::vector<std::uint8_t> classify_edges(const std::vector<Edge>& edges,
                                          const std::vector<Eigen::Vector3f>& centroids,
                                          const std::vector<Eigen::Vector3f>& normals,
                                          const ConvexityConfig& config, const PatchSizes& sizes);
+
+// Eq. (1)'s measure per edge (convexity_measure), computed in parallel: what
+// the noise filter (FilterConfig::by_convexity) ranks a small segment's
+// neighbours by.
+std::vector<float> edge_convexity(const std::vector<Edge>& edges, const std::vector<Eigen::Vector3f>& centroids,
+                                  const std::vector<Eigen::Vector3f>& normals);
 
 }  // namespace lccp

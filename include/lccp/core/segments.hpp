@@ -18,12 +18,16 @@ inline constexpr std::uint32_t kNoSegment = 0xffffffffu;
 std::vector<std::uint32_t> convex_components(std::size_t supervoxel_count, const std::vector<Edge>& edges,
                                              const std::vector<std::uint8_t>& convex);
 
-// Merges every segment of <= n_filter supervoxels into its largest neighbouring
-// segment (ties: smaller id), repeatedly, until no such segment has a neighbour
-// (kNoSegment is none).
-// Small segments are visited smallest first, then by id, so the result is deterministic.
+// The noise filter (A.4): every segment of <= n_filter supervoxels merges
+// into a neighbouring segment, repeatedly, until no such segment has a
+// neighbour (kNoSegment is none). First, given `convexity` (per edge, eq. (1)'s
+// measure: edge_convexity), each joins the neighbour across its most convex
+// edge if that neighbour is not small, until none does
+// (FilterConfig::by_convexity); then each that is left joins its largest
+// neighbour (ties: smaller id), as in the paper. Small segments are visited
+// smallest first, then by id, so the result is deterministic.
 void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, const std::vector<Edge>& edges,
-                          std::uint32_t n_filter);
+                          std::uint32_t n_filter, const std::vector<float>& convexity = {});
 
 // Renumbers segments densely 1..K: largest segment (in supervoxels) first,
 // ties by smallest member supervoxel; kNoSegment becomes 0. Returns K.
