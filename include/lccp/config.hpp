@@ -185,8 +185,8 @@ struct FilterConfig {
   // one). A small segment is a patch that noise cut off by edges eq. (5) calls
   // not convex; LCCP's premise is that concave edges part surfaces, and the
   // largest neighbour may lie across a deep concavity: a piece of a mug's
-  // handle, 2 voxels thick at P1, meets the body at a measure of -1.1 to -1.3
-  // and the rest of the handle at -0.02 to -0.01. Off by default and in P1 and
+  // handle, 2 voxels thick at P1, meets the body at a measure of -0.6 to -1.3
+  // and the rest of the handle at -0.02 to +0.01. Off by default and in P1 and
   // P2, where it moved the mOSD scores by less than their spread between the
   // test and the learn scenes; on in config/robot.yaml, whose objects are built
   // from the parts (perf/RESULTS.md, "Session of 2026-12-06 23:27").
