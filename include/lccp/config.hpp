@@ -191,6 +191,20 @@ struct FilterConfig {
   // test and the learn scenes; on in config/robot.yaml, whose objects are built
   // from the parts (perf/RESULTS.md, "Session of 2026-12-06 23:27").
   bool by_convexity = false;
+  // Beyond the paper: the paper labels a point with its voxel's supervoxel,
+  // and a voxel (v wide) that straddles a crease or a contact holds points of
+  // both surfaces. With this key, a point of a voxel with a 26-neighbour in
+  // another segment goes to that neighbour's segment when the plane of the
+  // neighbour's supervoxel (centroid and normal) is kClearFit times nearer to
+  // it than its own supervoxel's plane: it lies on the other surface, not
+  // merely near the seam (a point about as near to both stays). On by default
+  // and in P1 and P2 (mOSD test and learn scenes up, perf/RESULTS.md "Session
+  // of 2026-12-07 03:28"); off in paper.yaml and robot.yaml, whose oriented
+  // boxes take every point (in four Kinect-noise views of the robot battery,
+  // noisy points moved across a seam's end made a box 11.9 mm too long or
+  // tilted its axis 2.4 deg; docs/ARCHITECTURE.md, Departures).
+  bool boundary_points_by_plane = true;
+  static constexpr float kClearFit = 4.0f;
   // Beyond the paper, at the object level only (SceneSegmenter, after stage 8):
   // an object of fewer points than this is no object: its points get label 0,
   // unassigned, as points outside the region do. Merging them is not an

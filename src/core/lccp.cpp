@@ -1,6 +1,7 @@
 #include "lccp/core/lccp.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "lccp/core/adjacency.hpp"
@@ -13,19 +14,6 @@
 
 namespace lccp {
 namespace {
-
-// Every point the label of its voxel's supervoxel; 0 for a point on the support.
-Labels label_points(const VoxelGrid& grid, const Supervoxels& supervoxels,
-                    const std::vector<std::uint32_t>& segment_of_supervoxel, const std::optional<SupportPlane>& support) {
-  Labels labels(grid.voxel_of_point.size(), 0);
-  detail::parallel_for_each_index(labels.size(), [&](std::size_t i) {
-    const std::uint32_t v = grid.voxel_of_point[i];
-    if (v != kNoVoxel && !(support && support->on_plane[i])) {
-      labels[i] = segment_of_supervoxel[supervoxels.supervoxel_of_voxel[v]];
-    }
-  });
-  return labels;
-}
 
 // Adds the points i for which left_out(i) holds to w.skip.
 template <typename Predicate>
@@ -99,14 +87,18 @@ std::vector<std::uint8_t> mostly_flagged(const SegmentationWork& w, const std::v
   return most;
 }
 
+// The distance from p to the plane of supervoxel `patch` (its centroid and normal).
+float to_patch_plane(const Supervoxels& supervoxels, std::uint32_t patch, const Eigen::Vector3f& p) {
+  return std::abs(supervoxels.normals[patch].dot(p - supervoxels.centroids[patch]));
+}
+
 // A point on the band in a supervoxel that is not the support's: the support's
 // if the support's plane fits it at least as well as its supervoxel's plane.
 bool fits_support(const SegmentationWork& w, std::size_t i) {
   const std::uint32_t s = supervoxel_of_point(w, i);
   if (s == kNoVoxel) return true;  // left out: the open table
   const Eigen::Vector3f& p = w.cloud.points[i];
-  const float to_patch = w.supervoxels.normals[s].dot(p - w.supervoxels.centroids[s]);
-  return std::abs(w.support->plane.distance(p)) <= std::abs(to_patch);
+  return std::abs(w.support->plane.distance(p)) <= to_patch_plane(w.supervoxels, s, p);
 }
 
 // decided_by_patches (SupportPlaneConfig), after the components: the
@@ -129,6 +121,74 @@ void settle_support(SegmentationWork& w, const SupportPlaneConfig& config) {
     }
   });
   w.support->inliers = static_cast<std::uint64_t>(std::count(on_plane.begin(), on_plane.end(), 1));
+}
+
+// Voxel v's supervoxel, then those of other segments (not the support's)
+// among its 26 neighbours, each once.
+struct BorderingPatches {
+  std::array<std::uint32_t, 27> patch{};
+  std::uint32_t count = 0;
+};
+
+BorderingPatches bordering_patches(const SegmentationWork& w, std::size_t v) {
+  const std::vector<std::uint32_t>& supervoxel = w.supervoxels.supervoxel_of_voxel;
+  const std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
+  BorderingPatches b;
+  b.patch[b.count++] = supervoxel[v];
+  for (const std::uint32_t* u = w.grid.neighbors.begin(v); u != w.grid.neighbors.end(v); ++u) {
+    const std::uint32_t t = supervoxel[*u];
+    if (segment[t] == 0 || segment[t] == segment[supervoxel[v]]) continue;
+    const auto end = b.patch.begin() + b.count;
+    if (std::find(b.patch.begin(), end, t) == end) b.patch[b.count++] = t;
+  }
+  return b;
+}
+
+// The segment point p lies on: that of the bordering patch whose plane is
+// nearest it, if that plane is kClearFit times nearer than its own patch's
+// (FilterConfig::boundary_points_by_plane); its own patch's otherwise.
+std::uint32_t segment_by_plane(const SegmentationWork& w, const BorderingPatches& b, const Eigen::Vector3f& p) {
+  std::uint32_t nearest = b.patch[1];
+  float nearest_m = to_patch_plane(w.supervoxels, nearest, p);
+  for (std::uint32_t k = 2; k < b.count; ++k) {
+    const float d = to_patch_plane(w.supervoxels, b.patch[k], p);
+    if (d < nearest_m) nearest_m = d, nearest = b.patch[k];
+  }
+  const bool clearly = FilterConfig::kClearFit * nearest_m < to_patch_plane(w.supervoxels, b.patch[0], p);
+  return w.segment_of_supervoxel[clearly ? nearest : b.patch[0]];
+}
+
+// Per supervoxel: 1 if it is in a segment (not the support's) and adjacent to
+// a supervoxel of another segment.
+std::vector<std::uint8_t> on_segment_borders(const SegmentationWork& w) {
+  const std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
+  std::vector<std::uint8_t> border(segment.size(), 0);
+  for (const Edge& e : w.edges) {
+    if (segment[e.a] != segment[e.b]) border[e.a] = segment[e.a] != 0, border[e.b] = segment[e.b] != 0;
+  }
+  return border;
+}
+
+// Every point the label of its voxel's supervoxel; 0 for a point on the
+// support. With by_plane, a point of a voxel that borders another segment's
+// voxel by segment_by_plane.
+Labels label_points(const SegmentationWork& w, bool by_plane) {
+  Labels labels(w.grid.voxel_of_point.size(), 0);
+  detail::parallel_for_each_index(labels.size(), [&](std::size_t i) {
+    const std::uint32_t s = supervoxel_of_point(w, i);
+    if (s != kNoVoxel && !(w.support && w.support->on_plane[i])) labels[i] = w.segment_of_supervoxel[s];
+  });
+  if (!by_plane) return labels;
+  const std::vector<std::uint8_t> border = on_segment_borders(w);
+  detail::parallel_for_each_index(w.grid.size(), [&](std::size_t v) {
+    if (!border[w.supervoxels.supervoxel_of_voxel[v]]) return;
+    const BorderingPatches b = bordering_patches(w, v);
+    if (b.count == 1) return;
+    for (const std::uint32_t* i = w.grid.points.begin(v); i != w.grid.points.end(v); ++i) {
+      if (labels[*i] != 0) labels[*i] = segment_by_plane(w, b, w.cloud.points[*i]);
+    }
+  });
+  return labels;
 }
 
 }  // namespace
@@ -212,7 +272,7 @@ void LccpSegmenter::filter_small(SegmentationWork& w) const {
                                            : std::vector<float>{};
   merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels, convexity);
   w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
-  w.result.labels = label_points(w.grid, w.supervoxels, w.segment_of_supervoxel, w.support);
+  w.result.labels = label_points(w, config_.filter.boundary_points_by_plane);
   w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
   w.result.supervoxel_count = static_cast<std::uint32_t>(w.supervoxels.size());
 }

@@ -200,6 +200,8 @@ std::vector<Key> method_keys() {
                 "segments of <= this many supervoxels merge into a neighbour (A.4)"),
       bool_key("filter_by_convexity", [](auto& c) -> auto& { return c.filter.by_convexity; },
                "beyond the paper: A.4 first joins a small segment to its neighbour across its most convex edge (true/false)"),
+      bool_key("boundary_points_by_plane", [](auto& c) -> auto& { return c.filter.boundary_points_by_plane; },
+               "beyond the paper: a point by a seam goes to the neighbouring segment whose patch plane clearly fits it (true/false)"),
       count_key("min_object_points", [](auto& c) -> auto& { return c.filter.min_object_points; },
                 "objects of fewer points are dropped: their points get label 0 (0: keep all)"),
   };

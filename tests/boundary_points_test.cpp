@@ -1,0 +1,91 @@
+// FilterConfig::boundary_points_by_plane: a voxel that straddles a seam holds
+// points of both surfaces; with the key, a point that lies on the other
+// surface goes to that surface's segment. Noise-free rendered scenes, P1.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <vector>
+
+#include "lccp/core/lccp.hpp"
+#include "lccp/io/config_file.hpp"
+#include "test_clouds.hpp"
+
+namespace lccp {
+namespace {
+
+// The distance from p to the rectangle r (not its plane: its nearest point).
+double to_rect(const test::Rect& r, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = p - r.corner;
+  const double a = std::clamp(q.dot(r.u) / r.u.squaredNorm(), 0.0, 1.0);
+  const double b = std::clamp(q.dot(r.v) / r.v.squaredNorm(), 0.0, 1.0);
+  return (p - (r.corner + a * r.u + b * r.v)).norm();
+}
+
+// Per rect, the label most of its points have.
+std::vector<std::uint32_t> majority_labels(const test::RenderedScene& scene, const Labels& labels, std::size_t rects) {
+  std::vector<std::map<std::uint32_t, int>> votes(rects);
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (scene.rect_of_point[i] >= 0) ++votes[static_cast<std::size_t>(scene.rect_of_point[i])][labels[i]];
+  }
+  std::vector<std::uint32_t> major(rects, 0);
+  for (std::size_t k = 0; k < rects; ++k) {
+    major[k] = std::max_element(votes[k].begin(), votes[k].end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
+  }
+  return major;
+}
+
+// Points not in their rect's segment, farther than `beyond_m` from every rect of another segment.
+std::size_t strays(const test::RenderedScene& scene, const std::vector<test::Rect>& rects, bool by_plane,
+                   double beyond_m) {
+  LccpConfig config;
+  config.filter.boundary_points_by_plane = by_plane;
+  const SegmentationResult r = LccpSegmenter(config).segment(scene.cloud);
+  const std::vector<std::uint32_t> major = majority_labels(scene, r.labels, rects.size());
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < r.labels.size(); ++i) {
+    if (scene.rect_of_point[i] < 0) continue;
+    const auto k = static_cast<std::size_t>(scene.rect_of_point[i]);
+    if (r.labels[i] == major[k]) continue;
+    double seam = 1e9;
+    for (std::size_t j = 0; j < rects.size(); ++j) {
+      if (major[j] != major[k]) seam = std::min(seam, to_rect(rects[j], scene.cloud.points[i].cast<double>()));
+    }
+    count += seam > beyond_m ? 1 : 0;
+  }
+  return count;
+}
+
+// A box on a table (test_clouds.hpp): the table's points in the voxels of the
+// box's foot lie on the table's plane; the paper's labelling gives them the box.
+TEST(BoundaryPointsByPlane, ABoxsFootKeepsNoTablePoint) {
+  const test::BoxOnTable box = test::box_on_table();
+  const test::RenderedScene scene = test::render(box.rects);
+  EXPECT_GT(strays(scene, box.rects, false, 0.002), 10u);
+  EXPECT_EQ(strays(scene, box.rects, true, 0.002), 0u);
+}
+
+// A wall on a floor, 1.3 m away, the seam moved off the camera cells' faces
+// so that its voxels hold points of both planes (a few mm of each).
+TEST(BoundaryPointsByPlane, AConcaveSeamsVoxelsGiveEachPointToItsPlane) {
+  test::ConcaveCorner corner = test::concave_corner(1.3, 0.10, 0.20);
+  const Eigen::Vector3d shift(0, 0.0013, 0.0011);
+  corner.wall.corner += shift, corner.table.corner += shift;
+  const test::RenderedScene scene = test::render({corner.wall, corner.table});
+  EXPECT_GT(strays(scene, {corner.wall, corner.table}, false, 0.002), 50u);
+  EXPECT_EQ(strays(scene, {corner.wall, corner.table}, true, 0.002), 0u);
+}
+
+// On in P1 and P2; off in the paper's method and in the robot preset (config.hpp).
+TEST(BoundaryPointsByPlane, OnByDefaultOffInThePaperAndRobotPresets) {
+  const std::filesystem::path dir(LCCP_CONFIG_DIR);
+  EXPECT_TRUE(LccpConfig{}.filter.boundary_points_by_plane);
+  EXPECT_TRUE(load_config(dir / "p1.yaml").objects.filter.boundary_points_by_plane);
+  EXPECT_TRUE(load_config(dir / "p2.yaml").objects.filter.boundary_points_by_plane);
+  EXPECT_FALSE(load_config(dir / "paper.yaml").objects.filter.boundary_points_by_plane);
+  EXPECT_FALSE(load_config(dir / "robot.yaml").objects.filter.boundary_points_by_plane);
+}
+
+}  // namespace
+}  // namespace lccp
