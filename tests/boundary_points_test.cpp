@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
 #include <vector>
 
 #include "lccp/core/lccp.hpp"
@@ -23,26 +22,14 @@ double to_rect(const test::Rect& r, const Eigen::Vector3d& p) {
   return (p - (r.corner + a * r.u + b * r.v)).norm();
 }
 
-// Per rect, the label most of its points have.
-std::vector<std::uint32_t> majority_labels(const test::RenderedScene& scene, const Labels& labels, std::size_t rects) {
-  std::vector<std::map<std::uint32_t, int>> votes(rects);
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    if (scene.rect_of_point[i] >= 0) ++votes[static_cast<std::size_t>(scene.rect_of_point[i])][labels[i]];
-  }
-  std::vector<std::uint32_t> major(rects, 0);
-  for (std::size_t k = 0; k < rects; ++k) {
-    major[k] = std::max_element(votes[k].begin(), votes[k].end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
-  }
-  return major;
-}
-
 // Points not in their rect's segment, farther than `beyond_m` from every rect of another segment.
 std::size_t strays(const test::RenderedScene& scene, const std::vector<test::Rect>& rects, bool by_plane,
                    double beyond_m) {
   LccpConfig config;
   config.filter.boundary_points_by_plane = by_plane;
   const SegmentationResult r = LccpSegmenter(config).segment(scene.cloud);
-  const std::vector<std::uint32_t> major = majority_labels(scene, r.labels, rects.size());
+  std::vector<std::uint32_t> major(rects.size());
+  for (std::size_t k = 0; k < rects.size(); ++k) major[k] = test::majority(scene, r.labels, static_cast<int>(k)).first;
   std::size_t count = 0;
   for (std::size_t i = 0; i < r.labels.size(); ++i) {
     if (scene.rect_of_point[i] < 0) continue;

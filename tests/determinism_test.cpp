@@ -268,27 +268,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, MosdScene, ::testing::Values(SceneFloor{"mosd_t
 
 // --- LCCP on synthetic scenes ------------------------------------------------------------
 
-// The label most points of rect `which` carry, and the fraction of them carrying it.
-std::pair<std::uint32_t, double> majority(const test::RenderedScene& sc, const Labels& labels, int which) {
-  std::map<std::uint32_t, std::size_t> count;
-  std::size_t total = 0;
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    if (sc.rect_of_point[i] != which) continue;
-    ++count[labels[i]];
-    ++total;
-  }
-  if (total == 0) return {0, 0.0};
-  auto best = std::max_element(count.begin(), count.end(), [](auto& a, auto& b) { return a.second < b.second; });
-  return {best->first, double(best->second) / double(total)};
-}
-
 TEST(LccpSynthetic, ConcaveCornerSplitsIntoTwoSegments) {
   const test::ConcaveCorner c = test::concave_corner(1.0, 0.10, 0.20);
   const auto sc = test::render({c.wall, c.table});
   const SegmentationResult r = LccpSegmenter(LccpConfig{}).segment(sc.cloud);
   expect_valid_labels(sc.cloud, r);
-  const auto [wall, wall_frac] = majority(sc, r.labels, 0);
-  const auto [table, table_frac] = majority(sc, r.labels, 1);
+  const auto [wall, wall_frac] = test::majority(sc, r.labels, 0);
+  const auto [table, table_frac] = test::majority(sc, r.labels, 1);
   EXPECT_NE(wall, table) << "the concave edge must separate the planes";
   EXPECT_GT(wall_frac, 0.9);
   EXPECT_GT(table_frac, 0.9);
@@ -299,8 +285,8 @@ TEST(LccpSynthetic, ConvexRidgeStaysOneSegment) {
   const auto sc = test::render({c.wall, c.table});
   const SegmentationResult r = LccpSegmenter(LccpConfig{}).segment(sc.cloud);
   expect_valid_labels(sc.cloud, r);
-  const auto [a, a_frac] = majority(sc, r.labels, 0);
-  const auto [b, b_frac] = majority(sc, r.labels, 1);
+  const auto [a, a_frac] = test::majority(sc, r.labels, 0);
+  const auto [b, b_frac] = test::majority(sc, r.labels, 1);
   EXPECT_EQ(a, b) << "a convex edge must not separate the planes";
   EXPECT_GT(a_frac, 0.95);
   EXPECT_GT(b_frac, 0.95);
@@ -311,7 +297,7 @@ TEST(LccpSynthetic, BoxOnTableIsSeparatedFromTheTable) {
   const auto sc = test::render(box.rects);
   const SegmentationResult r = LccpSegmenter(LccpConfig{}).segment(sc.cloud);
   expect_valid_labels(sc.cloud, r);
-  const auto [table, table_frac] = majority(sc, r.labels, test::BoxOnTable::kTable);
+  const auto [table, table_frac] = test::majority(sc, r.labels, test::BoxOnTable::kTable);
   EXPECT_GT(table_frac, 0.9);
   // The visible box faces (convex to each other) share one label, not the table's.
   std::map<std::uint32_t, std::size_t> box_labels;

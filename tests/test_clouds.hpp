@@ -269,6 +269,20 @@ inline BoxOnTable box_on_table(double box_m = 0.10, double table_m = 0.50) {
 
 // --- small helpers ----------------------------------------------------------------------
 
+// The label most points of rect `which` carry, and the fraction of them carrying it.
+inline std::pair<std::uint32_t, double> majority(const RenderedScene& sc, const std::vector<std::uint32_t>& labels, int which) {
+  std::map<std::uint32_t, std::size_t> count;
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (sc.rect_of_point[i] != which) continue;
+    ++count[labels[i]];
+    ++total;
+  }
+  if (total == 0) return {0, 0.0};
+  auto best = std::max_element(count.begin(), count.end(), [](auto& a, auto& b) { return a.second < b.second; });
+  return {best->first, double(best->second) / double(total)};
+}
+
 // An unorganized cloud of the given points.
 inline PointCloud unorganized(std::vector<Eigen::Vector3f> points) {
   PointCloud cloud;
