@@ -245,13 +245,9 @@ const std::set<std::string>& not_met_yet() {
     "boxes face to face 6 cm, A 10x12 B 8x9, elevation 30 organized noise-free",
     "boxes face to face 6 cm, A 10x12 B 8x9, elevation 30 unorganized noise-free",
     "pan with a long handle toward +x, elevation 30 organized kinect noise",
-    "pan with a long handle toward +x, elevation 30 organized noise-free",
     "pan with a long handle toward +x, elevation 30 unorganized kinect noise",
-    "pan with a long handle toward +x, elevation 30 unorganized noise-free",
     "pan with a long handle toward +x, elevation 45 organized kinect noise",
-    "pan with a long handle toward +x, elevation 45 organized noise-free",
     "pan with a long handle toward +x, elevation 45 unorganized kinect noise",
-    "pan with a long handle toward +x, elevation 45 unorganized noise-free",
   };
   return names;
 }
@@ -412,8 +408,10 @@ test::ContactSolid board_on_the_line(double start, double length, std::uint32_t 
 // In every contact view: one object per name, the layout's solids 10, 20, ...
 // (`names`, for the printed line, in that order) each mostly in one of them,
 // no two in the same.
-void expect_objects_apart(const test::ContactLayout& layout, const std::vector<const char*>& names) {
+void expect_objects_apart(const test::ContactLayout& layout, const std::vector<const char*>& names,
+                          bool with_noise = true) {
   for (const test::ContactView& view : test::contact_views()) {
+    if (view.noisy && !with_noise) continue;
     const test::ContactScene scene = test::contact_scene(layout, view);
     const SceneSegmentation seg = robot_segmenter().segment(scene.cloud);
     std::printf("[robot] %s, %s: objects %u;", layout.name.c_str(), test::describe(view).c_str(), seg.object_count);
@@ -528,6 +526,25 @@ TEST(RobotContainer, ABoxSeenOverAnEqualBoxInFrontIsNotItsInside) {
   const test::ContactSolid rear = test::box_solid({-0.05, 0.10, 0}, {0.05, 0.16, 0.12}, test::kFirstObjectLabel);
   const test::ContactLayout layout{"a box 10 cm behind an equal box", {rear, front}, {0, 0.05, 0.06}};
   expect_objects_apart(test::turned(layout, 20), {"rear box", "front box"});
+}
+
+// Two boxes, 6 x 10 x 12 cm and 6 x 8 x 9 cm, touching face to face on a board
+// 6 mm thick (label 30), a tray: neither meets the support, both stand on a
+// floor raised off it, as a pan's far inner wall does; but they meet along
+// their sides, not at a rim at the top of both with their tops at one height
+// (join_inner_walls). Two objects; the board, flat, is none. Noise-free views:
+// with the Kinect noise model, seen from 45 deg, the two are one object with
+// or without join_inner_walls (perf/RESULTS.md, "Session of 2026-12-07 06:56").
+TEST(RobotContainer, TwoBoxesTouchingOnATrayAreTwoObjects) {
+  constexpr double kBoard = 0.006;
+  const test::ContactLayout layout{"two boxes touching on a tray",
+                                   {test::box_solid({-0.06, -0.05, kBoard}, {0, 0.05, kBoard + 0.12},
+                                                    test::kFirstObjectLabel),
+                                    test::box_solid({0, -0.04, kBoard}, {0.06, 0.04, kBoard + 0.09},
+                                                    test::kSecondObjectLabel),
+                                    test::box_solid({-0.15, -0.12, 0}, {0.15, 0.12, kBoard}, 30)},
+                                   Eigen::Vector3d(0, 0, 0.04)};
+  expect_objects_apart(test::turned(layout, -20), {"A", "B"}, false);
 }
 
 // --- the truth itself, against hand computations ---------------------------------------

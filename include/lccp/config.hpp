@@ -242,7 +242,9 @@ struct LimitsConfig {
 // a box on a box), is the body of an object of its own. A part that does neither hangs off the side
 // of a neighbour (a handle, a spout, a knob) and joins the neighbour it shares
 // most supervoxel edges with; so does a part lying inside a neighbour's
-// footprint, below its top (a container's floor), a part that continues
+// footprint, below its top (a container's floor), a part standing on a
+// flat part, not on the support, that meets a neighbour at a rim, both tops
+// at one height (a pan's far inner wall on its raised floor), a part that continues
 // another behind a nearer object (occluded_gap_m), a part hanging in the
 // air beside a nearer body it vanishes behind, within a seed spacing of it
 // (a handle whose ends the mug hides), and a part the sensor sees over a

@@ -4,7 +4,8 @@
 // other parts from the supervoxel adjacency graph; then every part that
 // neither stands on the support nor rests on an upward face, and every part
 // inside a neighbour's footprint below its top, joins the neighbour it shares
-// most edges with; and what a nearer object hides is read from the image and
+// most edges with; a container's far inner wall on its raised floor joins the
+// wall it meets at the rim; and what a nearer object hides is read from the image and
 // the depths (occlusion.hpp): one surface on either side of it, a handle held
 // behind it, a container's inside seen over its rim.
 #include "lccp/objects/grouping.hpp"
@@ -260,6 +261,61 @@ void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shape
   }
 }
 
+// Per part (0-based): whether it meets the support (a supervoxel edge to one
+// of the support's, segment 0) and whether it meets a flat part.
+struct Neighbours {
+  std::vector<std::uint8_t> support, flat;
+};
+
+Neighbours neighbours(const SegmentationWork& w, const std::vector<Footing>& feet) {
+  Neighbours n{std::vector<std::uint8_t>(feet.size(), 0), std::vector<std::uint8_t>(feet.size(), 0)};
+  const auto mark = [&](std::uint32_t part, std::uint32_t other) {
+    if (part == 0 || part == other) return;
+    if (other == 0) n.support[part - 1] = 1;
+    if (other != 0 && feet[other - 1] == Footing::flat) n.flat[part - 1] = 1;
+  };
+  for (const Edge& e : w.edges) {
+    const std::uint32_t p = w.segment_of_supervoxel[e.a], q = w.segment_of_supervoxel[e.b];
+    mark(p, q), mark(q, p);
+  }
+  return n;
+}
+
+// A part that reaches down to the support (it stands) but meets a flat part
+// and no supervoxel of the support stands on a floor raised off the support
+// (a pan's or a tray's, too thin to be told from the table by height alone).
+// Where it meets a part that is not flat at the top of both, their tops at
+// one height (within contact_m), it is the far inner wall of that part's
+// container, the two walls meeting at the rim: it joins it, and so do the
+// raised parts that meet it (the inner wall seen in pieces), until no more
+// do. Its floor then lies inside the container's footprint (join_insides).
+// Two objects standing side by side on a tray meet along their sides, not
+// at their tops at one height: they stay apart.
+void join_inner_walls(ConcurrentUnionFind& sets, const SegmentationWork& w, const std::vector<Junction>& all,
+                      const std::vector<PartShape>& shapes, const std::vector<Footing>& feet,
+                      const GroupingConfig& config) {
+  const Neighbours n = neighbours(w, feet);
+  const auto raised = [&](std::uint32_t k) { return feet[k] == Footing::stands && !n.support[k] && n.flat[k]; };
+  std::vector<std::uint8_t> wall(feet.size(), 0);
+  for (const Junction& j : all) {
+    const std::uint32_t p = j.p - 1, q = j.q - 1;
+    if (feet[p] == Footing::flat || feet[q] == Footing::flat || !(raised(p) || raised(q))) continue;
+    const bool rim = at_its_top(shapes[p], j.height[0] / j.edges) && at_its_top(shapes[q], j.height[1] / j.edges);
+    if (!rim || std::abs(shapes[p].top - shapes[q].top) > config.contact_m) continue;
+    sets.unite(p, q);
+    wall[p] |= raised(p), wall[q] |= raised(q);
+  }
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const Junction& j : all) {
+      const std::uint32_t p = j.p - 1, q = j.q - 1;
+      if (!raised(p) || !raised(q) || wall[p] == wall[q]) continue;
+      sets.unite(p, q);
+      wall[p] = wall[q] = 1, grew = true;
+    }
+  }
+}
+
 // Per part the smallest part it is one with: parts off the support on no body
 // of their own (neither standing nor resting on one) that meet each other in
 // one object are pieces of one part (a handle the segmentation cut in two,
@@ -363,7 +419,8 @@ PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   const Hulls hulls = part_hulls(w, plane);
   std::vector<Footing> feet(count);
   for (std::uint32_t k = 0; k < count; ++k) feet[k] = footing(shapes[k], config);
-  const std::vector<Side> sides = sides_of(junctions(w, plane, cos_upward), shapes, feet);
+  const std::vector<Junction> meeting = junctions(w, plane, cos_upward);
+  const std::vector<Side> sides = sides_of(meeting, shapes, feet);
   ConcurrentUnionFind sets(count);
   std::optional<detail::SeenDepth> seen;  // what nearer objects hide: occluded_gap_m 0 asks nothing of it
   if (config.occluded_gap_m > 0.0f) seen.emplace(w.cloud, w.result.labels, lccp.voxels.voxel_size_m);
@@ -371,6 +428,7 @@ PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   const std::vector<std::uint8_t> bodies = anchors(feet, sides);
   hang_clusters(sets, bodies, feet, sides);
   if (seen) join_held_behind(sets, w, *seen, lccp, bodies, feet, sides);
+  join_inner_walls(sets, w, meeting, shapes, feet, config);
   join_insides(sets, shapes, hulls, sides, config);
   join_seen_over_rims(sets, w, lccp, shapes, feet);
   std::vector<std::uint32_t> part = one_part(sets, bodies, feet, sides);
