@@ -533,8 +533,8 @@ TEST(RobotContainer, ABoxSeenOverAnEqualBoxInFrontIsNotItsInside) {
 // floor raised off it, as a pan's far inner wall does; but they meet along
 // their sides, not at a rim at the top of both with their tops at one height
 // (join_inner_walls). Two objects; the board, flat, is none. Noise-free views:
-// with the Kinect noise model, seen from 45 deg, the two are one object with
-// or without join_inner_walls (perf/RESULTS.md, "Session of 2026-12-07 06:56").
+// with the Kinect noise model, seen from 45 deg, P1 makes the two boxes one
+// part, before any grouping (perf/RESULTS.md, "Session of 2026-12-07 06:56").
 TEST(RobotContainer, TwoBoxesTouchingOnATrayAreTwoObjects) {
   constexpr double kBoard = 0.006;
   const test::ContactLayout layout{"two boxes touching on a tray",
