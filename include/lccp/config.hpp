@@ -152,7 +152,10 @@ struct SupportPlaneConfig {
   // band lies in its cell or a neighbouring one of a grid of distance_m cells
   // (the open table); the others are segmented with the objects, and after the
   // filter (A.4) the support is the supervoxels most of whose points are in the
-  // band. A band point of any other supervoxel stays with it unless the support's
+  // band and that are centred on the plane (within half a depth step plus three
+  // standard errors of their mean) or joined to one through others of the band:
+  // a band region that reaches none is a plane of its own just above the support
+  // (a pan's floor). A band point of any other supervoxel stays with it unless the support's
   // plane fits it at least as well as its supervoxel's plane: an object keeps its
   // foot, a neighbourhood planar with the plane goes to the plane.
   bool decided_by_patches = false;

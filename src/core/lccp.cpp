@@ -6,6 +6,7 @@
 
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
+#include "lccp/core/grouped.hpp"
 #include "lccp/core/normals.hpp"
 #include "lccp/core/segments.hpp"
 #include "lccp/core/supervoxels.hpp"
@@ -75,16 +76,54 @@ std::uint32_t supervoxel_of_point(const SegmentationWork& w, std::size_t i) {
   return v == kNoVoxel ? kNoVoxel : w.supervoxels.supervoxel_of_voxel[v];
 }
 
-// Per supervoxel: 1 if most of its points are flagged.
-std::vector<std::uint8_t> mostly_flagged(const SegmentationWork& w, const std::vector<std::uint8_t>& flag) {
-  std::vector<std::int32_t> balance(w.supervoxels.size(), 0);  // flagged points minus the others
-  for (std::size_t i = 0; i < flag.size(); ++i) {
+// Per supervoxel: its points, and of those how many are on the support's band.
+struct BandCounts {
+  std::vector<std::uint32_t> points, on_band;
+};
+
+BandCounts band_counts(const SegmentationWork& w, const std::vector<std::uint8_t>& on_plane) {
+  BandCounts c{std::vector<std::uint32_t>(w.supervoxels.size(), 0), std::vector<std::uint32_t>(w.supervoxels.size(), 0)};
+  for (std::size_t i = 0; i < on_plane.size(); ++i) {
     const std::uint32_t s = supervoxel_of_point(w, i);
-    if (s != kNoVoxel) balance[s] += flag[i] ? 1 : -1;
+    if (s != kNoVoxel) c.points[s] += 1, c.on_band[s] += on_plane[i] ? 1 : 0;
   }
-  std::vector<std::uint8_t> most(balance.size(), 0);
-  for (std::size_t s = 0; s < balance.size(); ++s) most[s] = balance[s] > 0 ? 1 : 0;
-  return most;
+  return c;
+}
+
+// Whether supervoxel s, of n points, is centred on the support's plane: its
+// centroid within half a depth step of it (the sensor rounds each depth to a
+// step, q z^2: SensorConfig) plus three standard errors of a mean of n points
+// (noise_m: the plane's own inliers).
+bool centred_on_plane(const SegmentationWork& w, std::uint32_t s, std::uint32_t n, float step_per_m2) {
+  const Eigen::Vector3f& c = w.supervoxels.centroids[s];
+  const float tolerance = 0.5f * step_per_m2 * c.z() * c.z() + 3.0f * w.support->noise_m / std::sqrt(float(n));
+  return std::abs(w.support->plane.distance(c)) <= tolerance;
+}
+
+// The support's supervoxels: of those most of whose points are on the band,
+// the ones centred on its plane and those joined to one through others of
+// the band. A band region that reaches none is a plane of its own just above
+// the support, inside the band of a noisy sensor (a pan's floor 5 mm up): not
+// the support.
+std::vector<std::uint8_t> support_patches(const SegmentationWork& w, float step_per_m2) {
+  const BandCounts c = band_counts(w, w.support->on_plane);
+  const auto banded = [&](std::uint32_t s) { return 2 * c.on_band[s] > c.points[s]; };
+  std::vector<std::uint8_t> support(c.points.size(), 0);
+  std::vector<std::uint32_t> front;
+  for (std::uint32_t s = 0; s < support.size(); ++s) {
+    if (banded(s) && centred_on_plane(w, s, c.points[s], step_per_m2)) support[s] = 1, front.push_back(s);
+  }
+  const Grouped<std::uint32_t> next = group_by_key<std::uint32_t>(support.size(), [&](auto emit) {
+    for (const Edge& e : w.edges) emit(e.a, e.b), emit(e.b, e.a);
+  });
+  while (!front.empty()) {
+    const std::uint32_t s = front.back();
+    front.pop_back();
+    for (const std::uint32_t t : next[s]) {
+      if (!support[t] && banded(t)) support[t] = 1, front.push_back(t);
+    }
+  }
+  return support;
 }
 
 // The distance from p to the plane of supervoxel `patch` (its centroid and normal).
@@ -102,20 +141,20 @@ bool fits_support(const SegmentationWork& w, std::size_t i) {
 }
 
 // decided_by_patches (SupportPlaneConfig), after the components: the
-// supervoxels most of whose points are on the band are the support's
-// (kNoSegment), and so are their points within distance_m of the plane (the
-// others are no segment's: label 0); a band point elsewhere is the support's if
-// the plane fits it as well as its patch (fits_support).
-void settle_support(SegmentationWork& w, const SupportPlaneConfig& config) {
-  if (!w.support || !config.decided_by_patches) return;
+// support's supervoxels (support_patches) are the support's (kNoSegment), and
+// so are their points within distance_m of the plane (the others are no
+// segment's: label 0); a band point elsewhere is the support's if the plane
+// fits it as well as its patch (fits_support).
+void settle_support(SegmentationWork& w, const LccpConfig& config) {
+  if (!w.support || !config.support.decided_by_patches) return;
   std::vector<std::uint8_t>& on_plane = w.support->on_plane;
   std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
-  const std::vector<std::uint8_t> support = mostly_flagged(w, on_plane);
+  const std::vector<std::uint8_t> support = support_patches(w, config.sensor.step_per_m2());
   for (std::size_t s = 0; s < segment.size(); ++s) segment[s] = support[s] ? kNoSegment : segment[s];
   detail::parallel_for_each_index(on_plane.size(), [&](std::size_t i) {
     const std::uint32_t s = supervoxel_of_point(w, i);
     if (s != kNoVoxel && support[s]) {
-      on_plane[i] = std::abs(w.support->plane.distance(w.cloud.points[i])) <= config.distance_m;
+      on_plane[i] = std::abs(w.support->plane.distance(w.cloud.points[i])) <= config.support.distance_m;
     } else {
       on_plane[i] = on_plane[i] && fits_support(w, i);
     }
@@ -266,7 +305,7 @@ void LccpSegmenter::merge_convex(SegmentationWork& w) const {
 // every point labelled through its voxel's supervoxel.
 void LccpSegmenter::filter_small(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::filter);
-  settle_support(w, config_.support);
+  settle_support(w, config_);
   const std::vector<float> convexity = config_.filter.by_convexity
                                            ? edge_convexity(w.edges, w.supervoxels.centroids, w.supervoxels.normals)
                                            : std::vector<float>{};
