@@ -98,7 +98,7 @@ StageOutputs run_stages(const PointCloud& cloud, const LccpConfig& cfg) {
   o.components = convex_components(o.sv.size(), o.edges, o.convex);
   o.filtered = o.components;
   merge_small_segments(o.filtered, o.edges, cfg.filter.n_filter_supervoxels,
-                       edge_convexity(o.edges, o.sv.centroids, o.sv.normals));
+                       EdgeRanks{edge_convexity(o.edges, o.sv.centroids, o.sv.normals), {}});
   o.segment_count = relabel_by_size(o.filtered);
   o.result = LccpSegmenter(cfg).segment(cloud);
   return o;

@@ -203,26 +203,59 @@ TEST(MergeSmallSegments, NoSegmentIsNeitherMergedNorMergedInto) {
   EXPECT_EQ(g.seg, (std::vector<std::uint32_t>{1, 1, 1, 1, 1, 2, 2, 2, 1, 0, 0, 0, 0, 0, 0}));
 }
 
-// Per edge of `edges`: 0 (flat), but `value` for the edges in `marked`.
-std::vector<float> convexity_but(const std::vector<Edge>& edges, const std::vector<Edge>& marked, float value) {
-  std::vector<float> convexity(edges.size(), 0.0f);
+// Per edge of `edges`: 0, but `value` for the edges in `marked`.
+template <typename T>
+std::vector<T> per_edge_but(const std::vector<Edge>& edges, const std::vector<Edge>& marked, T value) {
+  std::vector<T> per_edge(edges.size(), T{0});
   for (std::size_t e = 0; e < edges.size(); ++e) {
     for (const Edge& m : marked) {
-      if (edges[e].a == m.a && edges[e].b == m.b) convexity[e] = value;
+      if (edges[e].a == m.a && edges[e].b == m.b) per_edge[e] = value;
     }
   }
-  return convexity;
+  return per_edge;
+}
+
+// Eq. (1)'s measure per edge: 0 (flat), but `value` for the edges in `marked`.
+std::vector<float> convexity_but(const std::vector<Edge>& edges, const std::vector<Edge>& marked, float value) {
+  return per_edge_but(edges, marked, value);
+}
+
+// Per edge: kARestsOnB or kBRestsOnA (`side`) for the edges in `marked`, 0 for the others.
+std::vector<std::uint8_t> resting_but(const std::vector<Edge>& edges, const std::vector<Edge>& marked,
+                                      std::uint8_t side) {
+  return per_edge_but(edges, marked, side);
 }
 
 TEST(MergeSmallSegments, SmallJoinsTheNeighbourAcrossItsMostConvexEdge) {
   // {8} meets the 5 across a deep concavity (edge 4-8, eq. (1)'s measure -1) and the 3
   // across a flat edge (5-8, 0): n_filter 2, it joins the 3, though the 5 is larger.
   SmallBetweenTwo g;
-  merge_small_segments(g.seg, g.edges, 2, convexity_but(g.edges, {{4, 8}}, -1.0f));
+  merge_small_segments(g.seg, g.edges, 2, EdgeRanks{convexity_but(g.edges, {{4, 8}}, -1.0f), {}});
   EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 5}));
   // Both edges alike: the larger, as the paper's filter gives it.
   g = SmallBetweenTwo{};
-  merge_small_segments(g.seg, g.edges, 2, convexity_but(g.edges, {}, 0.0f));
+  merge_small_segments(g.seg, g.edges, 2, EdgeRanks{convexity_but(g.edges, {}, 0.0f), {}});
+  EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 0}));
+}
+
+TEST(MergeSmallSegments, ASmallSegmentJoinsANeighbourItDoesNotRestOn) {
+  // {8} stands on the 5's upward face (edge 4-8, 8 is its b side) and meets the 3 beside
+  // it: it joins the 3, by either rule, though the 5 is larger and, by convexity, more
+  // convexly joined.
+  SmallBetweenTwo g;
+  merge_small_segments(g.seg, g.edges, 2, EdgeRanks{{}, resting_but(g.edges, {{4, 8}}, kBRestsOnA)});
+  EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 5}));
+  g = SmallBetweenTwo{};
+  merge_small_segments(g.seg, g.edges, 2,
+                       EdgeRanks{convexity_but(g.edges, {{5, 8}}, -1.0f), resting_but(g.edges, {{4, 8}}, kBRestsOnA)});
+  EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 5}));
+  // The other way round (the 5's supervoxel 4 rests on 8) ranks nothing: {8} joins the 5.
+  g = SmallBetweenTwo{};
+  merge_small_segments(g.seg, g.edges, 2, EdgeRanks{{}, resting_but(g.edges, {{4, 8}}, kARestsOnB)});
+  EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 0}));
+  // Resting on both, it joins the largest, as in the paper.
+  g = SmallBetweenTwo{};
+  merge_small_segments(g.seg, g.edges, 2, EdgeRanks{{}, resting_but(g.edges, {{4, 8}, {5, 8}}, kBRestsOnA)});
   EXPECT_EQ(canonical(g.seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 5, 5, 5, 0}));
 }
 
@@ -235,7 +268,7 @@ TEST(MergeSmallSegments, AFragmentFollowsTheFragmentItContinues) {
   std::vector<Edge> edges = chain_edges(0, 19);
   sort_edges(edges);
   std::vector<std::uint32_t> seg = start;
-  merge_small_segments(seg, edges, 3, convexity_but(edges, {{9, 10}}, -1.0f));
+  merge_small_segments(seg, edges, 3, EdgeRanks{convexity_but(edges, {{9, 10}}, -1.0f), {}});
   EXPECT_EQ(canonical(seg), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 10, 10, 10, 10, 10, 10,
                                                         10, 10, 10}));
   // The paper's filter gives C to D, then B, which now meets D, to D too.

@@ -254,7 +254,11 @@ struct LimitsConfig {
 // neighbour's rim (a bowl's inside). Parts with no body of their own that
 // meet within one object are one part (a handle cut in two). The paper's object level
 // (beta_thresh 180 deg after plane removal, config/paper-robot.yaml) joins
-// every pair of touching objects. Needs the support plane.
+// every pair of touching objects. Needs the support plane. With it, the noise
+// filter (A.4) first offers a small segment the neighbours it does not stand
+// on: one whose centroid lies above a neighbour's upward face by more than the
+// noise of a mean of its voxels is no noise on that face (a sliver of a box's
+// side, seen edge on, standing on a lower box).
 struct GroupingConfig {
   bool objects_from_parts = false;
   // A Kinect's noise at a table's range (3 sigma at 1.5 m: 1.2 cm, SensorConfig)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
@@ -90,14 +91,17 @@ BandCounts band_counts(const SegmentationWork& w, const std::vector<std::uint8_t
   return c;
 }
 
-// Whether supervoxel s, of n points, is centred on the support's plane: its
-// centroid within half a depth step of it (the sensor rounds each depth to a
-// step, q z^2: SensorConfig) plus three standard errors of a mean of n points
-// (noise_m: the plane's own inliers).
+// How far from a plane the mean c of n samples of it may lie: half a depth
+// step (the sensor rounds each depth to a step, q z^2: SensorConfig) plus
+// three standard errors of the mean (noise_m: the support plane's inliers).
+float centring_tolerance(const SegmentationWork& w, const Eigen::Vector3f& c, std::uint32_t n, float step_per_m2) {
+  return 0.5f * step_per_m2 * c.z() * c.z() + 3.0f * w.support->noise_m / std::sqrt(float(n));
+}
+
+// Whether supervoxel s, of n points, is centred on the support's plane.
 bool centred_on_plane(const SegmentationWork& w, std::uint32_t s, std::uint32_t n, float step_per_m2) {
   const Eigen::Vector3f& c = w.supervoxels.centroids[s];
-  const float tolerance = 0.5f * step_per_m2 * c.z() * c.z() + 3.0f * w.support->noise_m / std::sqrt(float(n));
-  return std::abs(w.support->plane.distance(c)) <= tolerance;
+  return std::abs(w.support->plane.distance(c)) <= centring_tolerance(w, c, n, step_per_m2);
 }
 
 // The support's supervoxels: of those most of whose points are on the band,
@@ -160,6 +164,38 @@ void settle_support(SegmentationWork& w, const LccpConfig& config) {
     }
   });
   w.support->inliers = static_cast<std::uint64_t>(std::count(on_plane.begin(), on_plane.end(), 1));
+}
+
+// Whether supervoxel a rests on supervoxel b: b faces up (its normal within
+// upward_max_tilt_deg of the support's) and a's centroid lies above b's plane
+// by more than the centring tolerance of a mean of a's voxel centroids (each
+// a mean of one or more points: the tolerance errs wide).
+bool rests_on(const SegmentationWork& w, std::uint32_t a, std::uint32_t b, float cos_upward, float step_per_m2) {
+  const Supervoxels& sv = w.supervoxels;
+  const Eigen::Vector3f& n = sv.normals[b];
+  if (n.dot(w.support->plane.normal) < cos_upward) return false;
+  return n.dot(sv.centroids[a] - sv.centroids[b]) > centring_tolerance(w, sv.centroids[a], sv.voxel_counts[a], step_per_m2);
+}
+
+// Per edge, which side rests on the other's upward face (kARestsOnB,
+// kBRestsOnA). The objects GroupingConfig builds from the parts rest on each
+// other, and A.4 assumes a small segment is noise on the surface it joins: one
+// standing on a face is not on it, so the filter first tries its other
+// neighbours (a box's side, seen edge on in slivers, standing on a lower box:
+// the sliver meets the upper box's front beside it). Empty without a support
+// plane or grouping.
+std::vector<std::uint8_t> resting_edges(const SegmentationWork& w, const LccpConfig& config) {
+  if (!w.support || !config.grouping.objects_from_parts) return {};
+  const float cos_upward = std::cos(config.grouping.upward_max_tilt_deg * std::numbers::pi_v<float> / 180.0f);
+  const float q = config.sensor.step_per_m2();
+  std::vector<std::uint8_t> resting(w.edges.size(), 0);
+  detail::parallel_for_each_index(resting.size(), [&](std::size_t e) {
+    const Edge& edge = w.edges[e];
+    resting[e] = rests_on(w, edge.a, edge.b, cos_upward, q)   ? kARestsOnB
+                 : rests_on(w, edge.b, edge.a, cos_upward, q) ? kBRestsOnA
+                                                              : 0;
+  });
+  return resting;
 }
 
 // Voxel v's supervoxel, then those of other segments (not the support's)
@@ -306,10 +342,11 @@ void LccpSegmenter::merge_convex(SegmentationWork& w) const {
 void LccpSegmenter::filter_small(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::filter);
   settle_support(w, config_);
-  const std::vector<float> convexity = config_.filter.by_convexity
-                                           ? edge_convexity(w.edges, w.supervoxels.centroids, w.supervoxels.normals)
-                                           : std::vector<float>{};
-  merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels, convexity);
+  const EdgeRanks ranks{config_.filter.by_convexity
+                            ? edge_convexity(w.edges, w.supervoxels.centroids, w.supervoxels.normals)
+                            : std::vector<float>{},
+                        resting_edges(w, config_)};
+  merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels, ranks);
   w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
   w.result.labels = label_points(w, config_.filter.boundary_points_by_plane);
   w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());

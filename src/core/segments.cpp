@@ -50,10 +50,12 @@ SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
   return nodes;
 }
 
-// A neighbour across one edge, and that edge's convexity (eq. (1)'s measure).
+// A neighbour across one edge, that edge's convexity (eq. (1)'s measure), and
+// whether the row's node rests on the neighbour across it (kResting).
 struct Neighbor {
   std::uint32_t node = 0;
   float convexity = 0.0f;
+  bool rests = false;
 };
 
 // Segments as dense nodes with sizes (in supervoxels) and neighbour rows: one
@@ -86,18 +88,19 @@ struct SegmentGraph {
 
 // The nodes' neighbour rows in edge order.
 Grouped<Neighbor> neighbor_rows(const std::vector<std::uint32_t>& node_of, const std::vector<Edge>& edges,
-                                const std::vector<float>& convexity, std::size_t count) {
+                                const EdgeRanks& ranks, std::size_t count) {
   return group_by_key<Neighbor>(count, [&](auto emit) {
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const std::uint32_t a = node_of[edges[e].a], b = node_of[edges[e].b];
-      const float c = convexity.empty() ? 0.0f : convexity[e];
-      if (a != b) emit(a, Neighbor{b, c}), emit(b, Neighbor{a, c});
+      const float c = ranks.convexity.empty() ? 0.0f : ranks.convexity[e];
+      const std::uint8_t r = ranks.resting.empty() ? 0 : ranks.resting[e];
+      if (a != b) emit(a, Neighbor{b, c, r == kARestsOnB}), emit(b, Neighbor{a, c, r == kBRestsOnA});
     }
   });
 }
 
 SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, const std::vector<Edge>& edges,
-                                 const std::vector<float>& convexity) {
+                                 const EdgeRanks& ranks) {
   SegmentGraph g;
   g.nodes = segment_nodes(segment_of);
   const std::size_t count = g.nodes.ids.size();
@@ -109,7 +112,7 @@ SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, c
       g.node_of_supervoxel[*sv] = node;
     }
   }
-  g.neighbors = neighbor_rows(g.node_of_supervoxel, edges, convexity, count);
+  g.neighbors = neighbor_rows(g.node_of_supervoxel, edges, ranks, count);
   g.merged_into.resize(count);
   std::iota(g.merged_into.begin(), g.merged_into.end(), 0u);
   g.next_row.assign(count, SegmentGraph::kEnd);
@@ -122,19 +125,23 @@ SegmentGraph build_segment_graph(const std::vector<std::uint32_t>& segment_of, c
 // the smaller node).
 enum class Rule { largest, by_convexity };
 
-// The live neighbour of a live node that `rule` ranks first; none if isolated,
-// and by_convexity none if that neighbour is small (the node waits for it).
+// The live neighbour of a live node that `rule` ranks first, after those
+// across an edge on which the node does not rest (EdgeRanks::resting); none
+// if isolated, and by_convexity none if that neighbour is small (the node
+// waits for it).
 std::optional<std::uint32_t> merge_target(SegmentGraph& g, std::uint32_t node, std::uint32_t n_filter, Rule rule) {
   std::optional<std::uint32_t> best;
   float best_convexity = 0.0f;
+  bool best_free = false;
   for (std::uint32_t row = node; row != SegmentGraph::kEnd; row = g.next_row[row]) {
     for (std::uint32_t k = g.neighbors.offsets[row]; k < g.neighbors.offsets[row + 1]; ++k) {
       Neighbor& m = g.neighbors.items[k];
       const std::uint32_t n = m.node = g.alive(m.node);
       if (n == node || g.nodes.ids[n] == kNoSegment) continue;
       const float c = rule == Rule::by_convexity ? m.convexity : 0.0f;
-      if (!best || std::tuple(c, g.size[n], *best) > std::tuple(best_convexity, g.size[*best], n)) {
-        best = n, best_convexity = c;
+      const bool free = !m.rests;
+      if (!best || std::tuple(free, c, g.size[n], *best) > std::tuple(best_free, best_convexity, g.size[*best], n)) {
+        best = n, best_convexity = c, best_free = free;
       }
     }
   }
@@ -163,10 +170,10 @@ bool merge_sweep(SegmentGraph& g, std::uint32_t n_filter, Rule rule) {
 }  // namespace
 
 void merge_small_segments(std::vector<std::uint32_t>& segment_of_supervoxel, const std::vector<Edge>& edges,
-                          std::uint32_t n_filter, const std::vector<float>& convexity) {
+                          std::uint32_t n_filter, const EdgeRanks& ranks) {
   if (n_filter == 0 || segment_of_supervoxel.empty()) return;
-  SegmentGraph g = build_segment_graph(segment_of_supervoxel, edges, convexity);
-  while (!convexity.empty() && merge_sweep(g, n_filter, Rule::by_convexity)) {
+  SegmentGraph g = build_segment_graph(segment_of_supervoxel, edges, ranks);
+  while (!ranks.convexity.empty() && merge_sweep(g, n_filter, Rule::by_convexity)) {
   }
   while (merge_sweep(g, n_filter, Rule::largest)) {
   }
