@@ -1,14 +1,18 @@
 // FilterConfig::boundary_points_by_plane: a voxel that straddles a seam holds
 // points of both surfaces; with the key, a point that lies on the other
-// surface goes to that surface's segment. Noise-free rendered scenes, P1.
+// surface goes to that surface's segment. Noise-free rendered scenes, P1; and
+// two boxes face to face on a support plane, with and without Kinect noise.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
 #include "lccp/core/lccp.hpp"
 #include "lccp/io/config_file.hpp"
+#include "robot_scenes.hpp"
 #include "test_clouds.hpp"
 
 namespace lccp {
@@ -64,14 +68,62 @@ TEST(BoundaryPointsByPlane, AConcaveSeamsVoxelsGiveEachPointToItsPlane) {
   EXPECT_EQ(strays(scene, {corner.wall, corner.table}, true, 0.002), 0u);
 }
 
-// On in P1 and P2; off in the paper's method and in the robot preset (config.hpp).
-TEST(BoundaryPointsByPlane, OnByDefaultOffInThePaperAndRobotPresets) {
+// On in P1, P2 and the robot preset; off in the paper's method (config.hpp).
+TEST(BoundaryPointsByPlane, OnByDefaultOffInThePapersMethod) {
   const std::filesystem::path dir(LCCP_CONFIG_DIR);
   EXPECT_TRUE(LccpConfig{}.filter.boundary_points_by_plane);
   EXPECT_TRUE(load_config(dir / "p1.yaml").objects.filter.boundary_points_by_plane);
   EXPECT_TRUE(load_config(dir / "p2.yaml").objects.filter.boundary_points_by_plane);
+  EXPECT_TRUE(load_config(dir / "robot.yaml").objects.filter.boundary_points_by_plane);
   EXPECT_FALSE(load_config(dir / "paper.yaml").objects.filter.boundary_points_by_plane);
-  EXPECT_FALSE(load_config(dir / "robot.yaml").objects.filter.boundary_points_by_plane);
+}
+
+// The points that change segment with the key, and the least distance of one
+// of them from its own patch's plane over the centring tolerance of one sample
+// there (half a depth step plus three times the support plane's noise).
+struct Moved {
+  std::size_t count = 0;
+  double least_over_tolerance = 1e9;
+};
+
+Moved moved_points(const test::ContactView& view) {
+  LccpConfig config = load_config(std::filesystem::path(LCCP_CONFIG_DIR) / "robot.yaml").objects;
+  const test::ContactScene scene = test::contact_scene(test::two_boxes_touching(), view);
+  config.filter.boundary_points_by_plane = false;
+  const SegmentationResult kept = LccpSegmenter(config).segment(scene.cloud);
+  config.filter.boundary_points_by_plane = true;
+  const SegmentationWork w = LccpSegmenter(config).run(scene.cloud);
+  EXPECT_TRUE(w.support.has_value());
+  Moved m;
+  for (std::size_t i = 0; i < kept.labels.size(); ++i) {
+    if (w.result.labels[i] == kept.labels[i] || kept.labels[i] == 0) continue;
+    const Eigen::Vector3f& p = scene.cloud.points[i];
+    const std::uint32_t s = w.supervoxels.supervoxel_of_voxel[w.grid.voxel_of_point[i]];
+    const double own = std::abs(w.supervoxels.normals[s].dot(p - w.supervoxels.centroids[s]));
+    const double tolerance = 0.5 * config.sensor.step_per_m2() * p.z() * p.z() + 3.0 * w.support->noise_m;
+    m.count += 1, m.least_over_tolerance = std::min(m.least_over_tolerance, own / tolerance);
+  }
+  return m;
+}
+
+// With a support plane, a point moves only if it lies off its own patch's
+// plane by more than one sample's noise: noise-free, the points of one box in
+// the other's voxels move; with the Kinect's noise, no point within its noise
+// of its own patch does.
+TEST(BoundaryPointsByPlane, WithASupportPlaneAPointWithinItsNoiseStays) {
+  for (const bool noisy : {false, true}) {
+    test::ContactView view;
+    view.elevation_deg = 30, view.noisy = noisy;
+    const Moved m = moved_points(view);
+    if (!noisy) {
+      EXPECT_GE(m.count, 10u);
+    }
+    if (m.count > 0) {
+      EXPECT_GT(m.least_over_tolerance, 1.0) << (noisy ? "noisy" : "noise-free");
+    }
+    std::printf("[seam] %s: %zu points moved, the nearest to its own plane at %.2f tolerances\n",
+                noisy ? "Kinect noise" : "noise-free", m.count, m.least_over_tolerance);
+  }
 }
 
 }  // namespace

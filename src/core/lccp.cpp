@@ -219,17 +219,27 @@ BorderingPatches bordering_patches(const SegmentationWork& w, std::size_t v) {
   return b;
 }
 
+// How far from its own patch's plane a point must lie to be off it: with a
+// support plane, the centring tolerance of one sample (its depth step and the
+// plane's noise); without one, nothing is known of the noise: 0.
+float off_patch_m(const SegmentationWork& w, const Eigen::Vector3f& p, float step_per_m2) {
+  return w.support ? centring_tolerance(w, p, 1, step_per_m2) : 0.0f;
+}
+
 // The segment point p lies on: that of the bordering patch whose plane is
 // nearest it, if that plane is kClearFit times nearer than its own patch's
-// (FilterConfig::boundary_points_by_plane); its own patch's otherwise.
-std::uint32_t segment_by_plane(const SegmentationWork& w, const BorderingPatches& b, const Eigen::Vector3f& p) {
+// and p is off its own patch's plane (FilterConfig::boundary_points_by_plane);
+// its own patch's otherwise.
+std::uint32_t segment_by_plane(const SegmentationWork& w, const BorderingPatches& b, const Eigen::Vector3f& p,
+                               float step_per_m2) {
   std::uint32_t nearest = b.patch[1];
   float nearest_m = to_patch_plane(w.supervoxels, nearest, p);
   for (std::uint32_t k = 2; k < b.count; ++k) {
     const float d = to_patch_plane(w.supervoxels, b.patch[k], p);
     if (d < nearest_m) nearest_m = d, nearest = b.patch[k];
   }
-  const bool clearly = FilterConfig::kClearFit * nearest_m < to_patch_plane(w.supervoxels, b.patch[0], p);
+  const float own_m = to_patch_plane(w.supervoxels, b.patch[0], p);
+  const bool clearly = FilterConfig::kClearFit * nearest_m < own_m && own_m > off_patch_m(w, p, step_per_m2);
   return w.segment_of_supervoxel[clearly ? nearest : b.patch[0]];
 }
 
@@ -247,7 +257,7 @@ std::vector<std::uint8_t> on_segment_borders(const SegmentationWork& w) {
 // Every point the label of its voxel's supervoxel; 0 for a point on the
 // support. With by_plane, a point of a voxel that borders another segment's
 // voxel by segment_by_plane.
-Labels label_points(const SegmentationWork& w, bool by_plane) {
+Labels label_points(const SegmentationWork& w, bool by_plane, float step_per_m2) {
   Labels labels(w.grid.voxel_of_point.size(), 0);
   detail::parallel_for_each_index(labels.size(), [&](std::size_t i) {
     const std::uint32_t s = supervoxel_of_point(w, i);
@@ -260,7 +270,7 @@ Labels label_points(const SegmentationWork& w, bool by_plane) {
     const BorderingPatches b = bordering_patches(w, v);
     if (b.count == 1) return;
     for (const std::uint32_t* i = w.grid.points.begin(v); i != w.grid.points.end(v); ++i) {
-      if (labels[*i] != 0) labels[*i] = segment_by_plane(w, b, w.cloud.points[*i]);
+      if (labels[*i] != 0) labels[*i] = segment_by_plane(w, b, w.cloud.points[*i], step_per_m2);
     }
   });
   return labels;
@@ -348,7 +358,7 @@ void LccpSegmenter::filter_small(SegmentationWork& w) const {
                         resting_edges(w, config_)};
   merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels, ranks);
   w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
-  w.result.labels = label_points(w, config_.filter.boundary_points_by_plane);
+  w.result.labels = label_points(w, config_.filter.boundary_points_by_plane, config_.sensor.step_per_m2());
   w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
   w.result.supervoxel_count = static_cast<std::uint32_t>(w.supervoxels.size());
 }
