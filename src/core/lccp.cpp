@@ -174,7 +174,8 @@ bool rests_on(const SegmentationWork& w, std::uint32_t a, std::uint32_t b, float
   const Supervoxels& sv = w.supervoxels;
   const Eigen::Vector3f& n = sv.normals[b];
   if (n.dot(w.support->plane.normal) < cos_upward) return false;
-  return n.dot(sv.centroids[a] - sv.centroids[b]) > centring_tolerance(w, sv.centroids[a], sv.voxel_counts[a], step_per_m2);
+  const float tolerance = centring_tolerance(w, sv.centroids[a], sv.voxel_counts[a], step_per_m2);
+  return n.dot(sv.centroids[a] - sv.centroids[b]) > tolerance;
 }
 
 // Per edge, which side rests on the other's upward face (kARestsOnB,

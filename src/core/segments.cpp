@@ -51,7 +51,7 @@ SegmentNodes segment_nodes(const std::vector<std::uint32_t>& segment_of) {
 }
 
 // A neighbour across one edge, that edge's convexity (eq. (1)'s measure), and
-// whether the row's node rests on the neighbour across it (kResting).
+// whether the row's node rests on the neighbour across it (EdgeRanks::resting).
 struct Neighbor {
   std::uint32_t node = 0;
   float convexity = 0.0f;
