@@ -240,8 +240,6 @@ const std::set<std::string>& not_met_yet() {
   static const std::set<std::string> names{
     "box on a box, yawed 15 deg, elevation 45 organized noise-free",
     "box on a box, yawed 15 deg, elevation 45 unorganized noise-free",
-    "pan with a long handle toward +x, elevation 45 organized kinect noise",
-    "pan with a long handle toward +x, elevation 45 unorganized kinect noise",
   };
   return names;
 }

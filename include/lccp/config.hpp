@@ -151,11 +151,13 @@ struct SupportPlaneConfig {
   // paper's removal). true: a band point is left out only when no point off the
   // band lies in its cell or a neighbouring one of a grid of distance_m cells
   // (the open table); the others are segmented with the objects, and after the
-  // filter (A.4) the support is the supervoxels most of whose points are in the
-  // band and that are centred on the plane (within half a depth step plus three
-  // standard errors of their mean) or joined to one through others of the band:
-  // a band region that reaches none is a plane of its own just above the support
-  // (a pan's floor). A band point of any other supervoxel stays with it unless the support's
+  // filter (A.4) the support is the band regions (supervoxels most of whose
+  // points are in the band, joined by edges) whose band points' mean height
+  // agrees with the open table's in the cells around them (two seed spacings
+  // wide; the plane itself where there is none) within half a depth step plus
+  // three times the spread of the difference: its standard errors and the open
+  // table's own flatness from cell to cell. A region that does not is a plane
+  // of its own just above the support (a pan's floor). A band point of any other supervoxel stays with it unless the support's
   // plane fits it at least as well as its supervoxel's plane: an object keeps its
   // foot, a neighbourhood planar with the plane goes to the plane.
   bool decided_by_patches = false;

@@ -11,7 +11,9 @@
 #include "lccp/core/normals.hpp"
 #include "lccp/core/segments.hpp"
 #include "lccp/core/supervoxels.hpp"
+#include "lccp/core/union_find.hpp"
 #include "lccp/core/voxel_grid.hpp"
+#include "open_table.hpp"
 #include "parallel.hpp"
 
 namespace lccp {
@@ -77,55 +79,108 @@ std::uint32_t supervoxel_of_point(const SegmentationWork& w, std::size_t i) {
   return v == kNoVoxel ? kNoVoxel : w.supervoxels.supervoxel_of_voxel[v];
 }
 
-// Per supervoxel: its points, and of those how many are on the support's band.
-struct BandCounts {
-  std::vector<std::uint32_t> points, on_band;
+// How far from a plane a mean at depth z may lie and be the plane's: half a
+// depth step (the sensor rounds each depth to a step, q z^2: SensorConfig)
+// plus three times the mean's spread (its standard error, and any more).
+float centring_tolerance(float z, float spread_m, float step_per_m2) {
+  return 0.5f * step_per_m2 * z * z + 3.0f * spread_m;
+}
+
+// The standard error of a mean of n samples with the support plane's noise.
+float standard_error(const SegmentationWork& w, double n) {
+  return static_cast<float>(w.support->noise_m / std::sqrt(n));
+}
+
+// Per supervoxel: its points, and its band points' heights above the
+// support's plane and their depths, summed.
+struct BandPatch {
+  std::uint32_t points = 0;
+  detail::HeightSum band;
+  double depth = 0;
+  bool banded() const { return 2 * band.points > points; }  // most of its points on the band
 };
 
-BandCounts band_counts(const SegmentationWork& w, const std::vector<std::uint8_t>& on_plane) {
-  BandCounts c{std::vector<std::uint32_t>(w.supervoxels.size(), 0), std::vector<std::uint32_t>(w.supervoxels.size(), 0)};
-  for (std::size_t i = 0; i < on_plane.size(); ++i) {
+std::vector<BandPatch> band_patches(const SegmentationWork& w) {
+  std::vector<BandPatch> patches(w.supervoxels.size());
+  for (std::size_t i = 0; i < w.support->on_plane.size(); ++i) {
     const std::uint32_t s = supervoxel_of_point(w, i);
-    if (s != kNoVoxel) c.points[s] += 1, c.on_band[s] += on_plane[i] ? 1 : 0;
+    if (s == kNoVoxel) continue;
+    patches[s].points += 1;
+    if (!w.support->on_plane[i]) continue;
+    const Eigen::Vector3f& p = w.cloud.points[i];
+    patches[s].band.add(w.support->plane.distance(p)), patches[s].depth += p.z();
   }
-  return c;
+  return patches;
 }
 
-// How far from a plane the mean c of n samples of it may lie: half a depth
-// step (the sensor rounds each depth to a step, q z^2: SensorConfig) plus
-// three standard errors of the mean (noise_m: the support plane's inliers).
-float centring_tolerance(const SegmentationWork& w, const Eigen::Vector3f& c, std::uint32_t n, float step_per_m2) {
-  return 0.5f * step_per_m2 * c.z() * c.z() + 3.0f * w.support->noise_m / std::sqrt(float(n));
-}
+// A band region (banded supervoxels joined by edges): its band points, their
+// depths, and the open table's points in the cells around its supervoxels.
+struct BandRegion {
+  detail::HeightSum band, open;
+  double depth = 0;
+};
 
-// Whether supervoxel s, of n points, is centred on the support's plane.
-bool centred_on_plane(const SegmentationWork& w, std::uint32_t s, std::uint32_t n, float step_per_m2) {
-  const Eigen::Vector3f& c = w.supervoxels.centroids[s];
-  return std::abs(w.support->plane.distance(c)) <= centring_tolerance(w, c, n, step_per_m2);
-}
-
-// The support's supervoxels: of those most of whose points are on the band,
-// the ones centred on its plane and those joined to one through others of
-// the band. A band region that reaches none is a plane of its own just above
-// the support, inside the band of a noisy sensor (a pan's floor 5 mm up): not
-// the support.
-std::vector<std::uint8_t> support_patches(const SegmentationWork& w, float step_per_m2) {
-  const BandCounts c = band_counts(w, w.support->on_plane);
-  const auto banded = [&](std::uint32_t s) { return 2 * c.on_band[s] > c.points[s]; };
-  std::vector<std::uint8_t> support(c.points.size(), 0);
-  std::vector<std::uint32_t> front;
-  for (std::uint32_t s = 0; s < support.size(); ++s) {
-    if (banded(s) && centred_on_plane(w, s, c.points[s], step_per_m2)) support[s] = 1, front.push_back(s);
+// Per supervoxel, its band region (kNoVoxel if not banded); and each region's sums.
+std::vector<BandRegion> band_regions(const SegmentationWork& w, const std::vector<BandPatch>& patches,
+                                     const detail::OpenTable& open, std::vector<std::uint32_t>& region_of) {
+  const auto n = static_cast<std::uint32_t>(patches.size());
+  ConcurrentUnionFind sets(n);
+  for (const Edge& e : w.edges) {
+    if (patches[e.a].banded() && patches[e.b].banded()) sets.unite(e.a, e.b);
   }
-  const Grouped<std::uint32_t> next = group_by_key<std::uint32_t>(support.size(), [&](auto emit) {
-    for (const Edge& e : w.edges) emit(e.a, e.b), emit(e.b, e.a);
-  });
-  while (!front.empty()) {
-    const std::uint32_t s = front.back();
-    front.pop_back();
-    for (const std::uint32_t t : next[s]) {
-      if (!support[t] && banded(t)) support[t] = 1, front.push_back(t);
+  region_of.assign(n, kNoVoxel);
+  for (std::uint32_t s = 0; s < n; ++s) region_of[s] = patches[s].banded() ? sets.find(s) : kNoVoxel;
+  const Grouped<std::uint32_t> members = group_by_key<std::uint32_t>(n, [&](auto emit) {
+    for (std::uint32_t s = 0; s < n; ++s) {
+      if (region_of[s] != kNoVoxel) emit(region_of[s], s);
     }
+  });
+  std::vector<BandRegion> regions(n);
+  std::vector<std::uint32_t> counted(open.size(), kNoVoxel);  // per cell: the last region that counted it
+  std::vector<long> near;
+  for (std::uint32_t r = 0; r < n; ++r) {
+    for (const std::uint32_t s : members[r]) {
+      regions[r].band.add(patches[s].band), regions[r].depth += patches[s].depth;
+      const long cell = open.cell_of(w.supervoxels.centroids[s]);
+      if (cell < 0) continue;
+      open.around(cell, near);
+      for (const long c : near) {
+        std::uint32_t& last = counted[static_cast<std::size_t>(c)];
+        if (last != r) last = r, regions[r].open.add(open.at(c));
+      }
+    }
+  }
+  return regions;
+}
+
+// Whether a band region is the support: its band points' mean height agrees
+// with that of the open table around it (with none around, with the plane's)
+// within the centring tolerance of the difference: its standard error and
+// the open table's flatness. A region that does not is a plane of its own just
+// above the support, inside the band of a noisy sensor (a pan's floor 5 mm up).
+bool on_support(const SegmentationWork& w, const BandRegion& r, float flatness_m, float step_per_m2) {
+  const double mean = r.band.height / r.band.points;
+  const double reference = r.open.points > 0 ? r.open.height / r.open.points : 0.0;
+  const float error = standard_error(w, r.band.points);
+  const float open_error = r.open.points > 0 ? standard_error(w, r.open.points) : 0.0f;
+  const float spread = std::sqrt(error * error + open_error * open_error + flatness_m * flatness_m);
+  return std::abs(mean - reference) <= centring_tolerance(float(r.depth / r.band.points), spread, step_per_m2);
+}
+
+// The support's supervoxels: the band regions on_support, against the open
+// table (the band points left out: on the band, skipped) in cells two seed
+// spacings wide.
+std::vector<std::uint8_t> support_patches(const SegmentationWork& w, const LccpConfig& config) {
+  std::vector<std::uint8_t> left_out(w.support->on_plane.size());
+  for (std::size_t i = 0; i < left_out.size(); ++i) left_out[i] = w.support->on_plane[i] && w.skip[i];
+  const detail::OpenTable open(w.cloud, left_out, w.support->plane, 2.0f * config.supervoxels.seed_size_m);
+  const float flatness = open.flatness_m(), q = config.sensor.step_per_m2();
+  const std::vector<BandPatch> patches = band_patches(w);
+  std::vector<std::uint32_t> region_of;
+  const std::vector<BandRegion> regions = band_regions(w, patches, open, region_of);
+  std::vector<std::uint8_t> support(patches.size(), 0);
+  for (std::size_t s = 0; s < support.size(); ++s) {
+    support[s] = region_of[s] != kNoVoxel && on_support(w, regions[region_of[s]], flatness, q);
   }
   return support;
 }
@@ -153,7 +208,7 @@ void settle_support(SegmentationWork& w, const LccpConfig& config) {
   if (!w.support || !config.support.decided_by_patches) return;
   std::vector<std::uint8_t>& on_plane = w.support->on_plane;
   std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
-  const std::vector<std::uint8_t> support = support_patches(w, config.sensor.step_per_m2());
+  const std::vector<std::uint8_t> support = support_patches(w, config);
   for (std::size_t s = 0; s < segment.size(); ++s) segment[s] = support[s] ? kNoSegment : segment[s];
   detail::parallel_for_each_index(on_plane.size(), [&](std::size_t i) {
     const std::uint32_t s = supervoxel_of_point(w, i);
@@ -174,7 +229,7 @@ bool rests_on(const SegmentationWork& w, std::uint32_t a, std::uint32_t b, float
   const Supervoxels& sv = w.supervoxels;
   const Eigen::Vector3f& n = sv.normals[b];
   if (n.dot(w.support->plane.normal) < cos_upward) return false;
-  const float tolerance = centring_tolerance(w, sv.centroids[a], sv.voxel_counts[a], step_per_m2);
+  const float tolerance = centring_tolerance(sv.centroids[a].z(), standard_error(w, sv.voxel_counts[a]), step_per_m2);
   return n.dot(sv.centroids[a] - sv.centroids[b]) > tolerance;
 }
 
@@ -224,7 +279,7 @@ BorderingPatches bordering_patches(const SegmentationWork& w, std::size_t v) {
 // support plane, the centring tolerance of one sample (its depth step and the
 // plane's noise); without one, nothing is known of the noise: 0.
 float off_patch_m(const SegmentationWork& w, const Eigen::Vector3f& p, float step_per_m2) {
-  return w.support ? centring_tolerance(w, p, 1, step_per_m2) : 0.0f;
+  return w.support ? centring_tolerance(p.z(), standard_error(w, 1), step_per_m2) : 0.0f;
 }
 
 // The segment point p lies on: that of the bordering patch whose plane is

@@ -23,6 +23,7 @@
 
 #include "parallel.hpp"
 #include "plane_fit.hpp"
+#include "robust_sigma.hpp"
 
 namespace lccp {
 namespace {
@@ -271,16 +272,6 @@ Plane oriented(const Plane& p, const Eigen::Vector3f& up) {
   return p;
 }
 
-// 1.4826 times the median of `values` (reordered): a Gaussian's standard
-// deviation when they are its absolute deviations (the MAD; Rousseeuw and
-// Croux, "Alternatives to the median absolute deviation", JASA 88, 1993).
-float robust_sigma(std::vector<float>& values) {
-  if (values.empty()) return 0.0f;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return 1.4826f * *middle;
-}
-
 // The plane's noise from the scoring samples within distance_m of it: its
 // robust sigma in metres, and the band (the sigma of |r| / z^2 times k).
 struct Noise {
@@ -297,8 +288,8 @@ Noise plane_noise(const Samples& s, const Plane& plane, const SupportPlaneConfig
     distances.push_back(r), per_m2.push_back(r / (z * z));
   }
   Noise noise;
-  noise.sigma_m = robust_sigma(distances);
-  noise.band = {config.distance_m, config.noise_sigmas * robust_sigma(per_m2), 0.5f * sensor.step_per_m2(),
+  noise.sigma_m = detail::robust_sigma(distances);
+  noise.band = {config.distance_m, config.noise_sigmas * detail::robust_sigma(per_m2), 0.5f * sensor.step_per_m2(),
                 sensor.min_range_m};
   if (config.noise_sigmas == 0.0f) noise.band.sigmas_per_m2 = 0.0f;
   return noise;

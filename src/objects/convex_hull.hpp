@@ -74,12 +74,15 @@ inline Grouped<Eigen::Vector2d> hulls_of(const Grouped<Eigen::Vector2d>& groups)
   return hulls;
 }
 
-// Whether q lies inside (or on) the counter-clockwise convex polygon `hull`;
-// never for a hull of fewer than three vertices.
-inline bool inside_hull(std::span<const Eigen::Vector2d> hull, const Eigen::Vector2d& q) {
+// Whether q lies inside (or on) the counter-clockwise convex polygon `hull`,
+// or within `margin` outside each of its edges' lines; never for a hull of
+// fewer than three vertices.
+inline bool inside_hull(std::span<const Eigen::Vector2d> hull, const Eigen::Vector2d& q, double margin = 0.0) {
   if (hull.size() < 3) return false;
   for (std::size_t i = 0; i < hull.size(); ++i) {
-    if (cross(hull[i], hull[(i + 1) % hull.size()], q) < 0) return false;
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
+    if (cross(a, b, q) < -margin * (b - a).norm()) return false;
   }
   return true;
 }

@@ -121,11 +121,11 @@ Footing footing(const PartShape& part, const GroupingConfig& config) {
   return part.bottom <= config.contact_m ? Footing::stands : Footing::off;
 }
 
-// Whether every vertex of `hull` lies inside `outer`.
-bool inside(std::span<const Vec2> hull, std::span<const Vec2> outer) {
+// Whether every vertex of `hull` lies inside `outer`, or within `margin` of it.
+bool inside(std::span<const Vec2> hull, std::span<const Vec2> outer, double margin) {
   if (hull.empty()) return false;
   for (const Vec2& vertex : hull) {
-    if (!detail::inside_hull(outer, vertex)) return false;
+    if (!detail::inside_hull(outer, vertex, margin)) return false;
   }
   return true;
 }
@@ -233,9 +233,12 @@ void hang_clusters(ConcurrentUnionFind& sets, const std::vector<std::uint8_t>& a
 // object, not above its top, is that object's inside (a container's floor,
 // or its inner wall seen through the opening): it joins it, until no more do. An
 // object's footprint is the hull of its parts' hulls; joining a part inside
-// it changes neither that nor its top.
+// it changes neither that nor its top. Both are hulls of noisy patch centroids:
+// the part's may reach past the object's by the sensor's depth tolerance at
+// the part's depth (a floor's patches against the wall it meets).
 void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shapes, const Hulls& hulls,
-                  const std::vector<Side>& sides, const GroupingConfig& config) {
+                  const std::vector<Side>& sides, const LccpConfig& lccp) {
+  const GroupingConfig& config = lccp.grouping;
   const auto count = static_cast<std::uint32_t>(shapes.size());
   std::vector<double> top(count, -std::numeric_limits<double>::infinity());
   for (std::uint32_t k = 0; k < count; ++k) top[sets.find(k)] = std::max(top[sets.find(k)], shapes[k].top);
@@ -252,7 +255,9 @@ void join_insides(ConcurrentUnionFind& sets, const std::vector<PartShape>& shape
       if (sets.find(s.part) != s.part) continue;  // one part alone
       const std::uint32_t object = sets.find(s.other);
       if (object == s.part || shapes[s.part].top > top[object] + config.contact_m) continue;
-      if (!inside(hulls[s.part], footprints[footprint[object]])) continue;
+      const PartShape& part = shapes[s.part];
+      const double margin = lccp.sensor.depth_tolerance_m(float(part.sum.z() / double(part.points)));
+      if (!inside(hulls[s.part], footprints[footprint[object]], margin)) continue;
       sets.unite(s.part, object);
       const std::uint32_t root = sets.find(object);
       if (root != object) footprint[root] = footprint[object], top[root] = top[object];
@@ -429,7 +434,7 @@ PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   hang_clusters(sets, bodies, feet, sides);
   if (seen) join_held_behind(sets, w, *seen, lccp, bodies, feet, sides);
   join_inner_walls(sets, w, meeting, shapes, feet, config);
-  join_insides(sets, shapes, hulls, sides, config);
+  join_insides(sets, shapes, hulls, sides, lccp);
   join_seen_over_rims(sets, w, lccp, shapes, feet);
   std::vector<std::uint32_t> part = one_part(sets, bodies, feet, sides);
   for (std::uint32_t& p : part) p += 1;  // labels
