@@ -1,8 +1,10 @@
 #pragma once
 // Parameters of the LCCP method. Defaults are the paper's parameter set P1
 // (Table II, beta_thresh 10 deg); every field carries its unit in its name.
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 namespace lccp {
@@ -272,6 +274,9 @@ struct GroupingConfig {
   // A face tilted less than this from the support's normal faces up: a thing
   // can rest on it (the friction cone of most household surfaces is narrower).
   float upward_max_tilt_deg = 45.0f;
+  // The cosine of upward_max_tilt_deg: a unit normal whose dot product with
+  // the support's is at least this faces up.
+  double cos_upward() const { return std::cos(upward_max_tilt_deg * std::numbers::pi / 180.0); }
   // Two parts that do not touch are one surface seen on either side of a
   // nearer object when the paper's convexity test (eq. (5)) joins their
   // nearest patches across the gap and the sensor cannot see the gap

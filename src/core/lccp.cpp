@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
@@ -242,7 +241,7 @@ bool rests_on(const SegmentationWork& w, std::uint32_t a, std::uint32_t b, float
 // plane or grouping.
 std::vector<std::uint8_t> resting_edges(const SegmentationWork& w, const LccpConfig& config) {
   if (!w.support || !config.grouping.objects_from_parts) return {};
-  const float cos_upward = std::cos(config.grouping.upward_max_tilt_deg * std::numbers::pi_v<float> / 180.0f);
+  const auto cos_upward = static_cast<float>(config.grouping.cos_upward());
   const float q = config.sensor.step_per_m2();
   std::vector<std::uint8_t> resting(w.edges.size(), 0);
   detail::parallel_for_each_index(resting.size(), [&](std::size_t e) {

@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <numeric>
 #include <optional>
 #include <span>
@@ -419,7 +418,7 @@ PartGroups group_parts(const SegmentationWork& w, const LccpConfig& lccp) {
   std::iota(own.begin(), own.end(), 1u);
   if (!w.support || count == 0) return {own, own};
   const Plane& plane = w.support->plane;
-  const double cos_upward = std::cos(config.upward_max_tilt_deg * std::numbers::pi / 180.0);
+  const double cos_upward = config.cos_upward();
   const std::vector<PartShape> shapes = part_shapes(w, plane);
   const Hulls hulls = part_hulls(w, plane);
   std::vector<Footing> feet(count);

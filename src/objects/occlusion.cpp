@@ -142,7 +142,7 @@ bool continues(const Patch& a, const Patch& b, const LccpConfig& config) {
 
 // Whether patch a faces up: within upward_max_tilt_deg of `up`, the support's normal.
 bool faces_up(const Patch& a, const LccpConfig& config, const Vec3& up) {
-  return a.normal.dot(up) >= std::cos(config.grouping.upward_max_tilt_deg * std::numbers::pi_v<float> / 180.0f);
+  return a.normal.dot(up) >= config.grouping.cos_upward();
 }
 
 // Per part its supervoxels.
