@@ -176,7 +176,7 @@ class Flood {
   void flood(Band& band, BucketQueue& queue, const std::vector<std::uint32_t>& seeds) {
     const auto drain = [&] {
       queue.drain([&](std::uint32_t u, std::uint32_t k) { settle(band, queue, u, k); },
-                       [&](std::uint32_t u) { fetch(u); });
+                  [&](std::uint32_t u) { fetch(u); });
     };
     for (const std::uint32_t v : seeds) {
       if (v >= band.first && v < band.last) plant(band, queue, v);
