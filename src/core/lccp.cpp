@@ -320,7 +320,7 @@ Labels label_points(const SegmentationWork& w, bool by_plane, float step_per_m2)
   });
   if (!by_plane) return labels;
   const std::vector<std::uint8_t> border = on_segment_borders(w);
-  detail::parallel_for_each_index(w.grid.size(), [&](std::size_t v) {
+  detail::parallel_for_each_index_balanced(w.grid.size(), [&](std::size_t v) {
     if (!border[w.supervoxels.supervoxel_of_voxel[v]]) return;
     const BorderingPatches b = bordering_patches(w, v);
     if (b.count == 1) return;
