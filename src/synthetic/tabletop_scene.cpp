@@ -320,13 +320,16 @@ void check(const Camera& camera) {
 
 }  // namespace
 
-struct TabletopScene::NoiseTable {
+// What every frame shares: the noise model's table, and the static scene as
+// the camera sees it (the camera does not move: detail::camera_pose()).
+struct TabletopScene::Fixed {
   detail::NormalDeviates normal;
+  SurfaceImage static_scene;
 };
 
 TabletopScene::TabletopScene(Camera camera, std::uint64_t noise_seed) : camera_(camera), noise_seed_(noise_seed) {
   check(camera_);
-  noise_table_ = std::make_shared<const NoiseTable>();
+  fixed_ = std::make_shared<const Fixed>(Fixed{{}, cast_static_scene(pixel_grid(camera_), detail::camera_pose())});
 }
 
 SyntheticFrame TabletopScene::render(std::uint64_t frame_index) const {
@@ -335,10 +338,10 @@ SyntheticFrame TabletopScene::render(std::uint64_t frame_index) const {
   const CameraPose pose = detail::camera_pose();
   const auto handle = detail::handle_centre_line();
 
-  SurfaceImage surface = cast_static_scene(grid, pose);
+  SurfaceImage surface = fixed_->static_scene;
   const auto parts = detail::object_parts_at(t_s);
   for (const Part& part : parts) cast_part(view_of(part, pose, grid), grid, handle, surface);
-  return measure(std::move(surface), grid, camera_, noise_table_->normal, detail::frame_key(noise_seed_, frame_index));
+  return measure(std::move(surface), grid, camera_, fixed_->normal, detail::frame_key(noise_seed_, frame_index));
 }
 
 }  // namespace lccp::synthetic

@@ -75,7 +75,7 @@ class TabletopScene {
   explicit TabletopScene(Camera camera = {}, std::uint64_t noise_seed = 1);
 
   // The scene at time frame_index / kFrameRateHz seconds (the motion repeats
-  // every 10 s; the noise does not). Single-threaded, about 5 ms at 640x480;
+  // every 10 s; the noise does not). Single-threaded, about 2.5 ms at 640x480;
   // safe to call from several threads at once. Its labels are the frame's
   // ground truth: all an evaluation needs of a frame index (per-object
   // centroids and the like follow from the labelled points).
@@ -86,9 +86,10 @@ class TabletopScene {
  private:
   Camera camera_;
   std::uint64_t noise_seed_;
-  // The noise model's table (16 KB, tabletop_scene.cpp), computed once, shared by copies.
-  struct NoiseTable;
-  std::shared_ptr<const NoiseTable> noise_table_;
+  // The noise model's table (16 KB) and the static scene's surface image
+  // (tabletop_scene.cpp), computed once, shared by copies.
+  struct Fixed;
+  std::shared_ptr<const Fixed> fixed_;
 };
 
 }  // namespace lccp::synthetic
