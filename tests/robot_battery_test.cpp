@@ -17,9 +17,6 @@
 //     footprint rectangle's longer side (as a line);
 //   - every reported object's centroid inside its own box (grown by 1 mm).
 // Every measured figure is printed ("[robot]" lines) so that it can be quoted.
-// The cases where they are not met yet are listed in not_met_yet(): checked
-// and printed, not failed (perf/RESULTS.md, issue 33).
-#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -236,14 +233,6 @@ void expect_centroids_in_their_boxes(const SceneSegmentation& seg) {
 // as "[robot] NOT MET" lines, without failing the suite; every other case must
 // meet them all. A case listed here that meets them fails, so that the list
 // stays exact.
-const std::set<std::string>& not_met_yet() {
-  static const std::set<std::string> names{
-    "box on a box, yawed 15 deg, elevation 45 organized noise-free",
-    "box on a box, yawed 15 deg, elevation 45 unorganized noise-free",
-  };
-  return names;
-}
-
 void check_case(const test::RobotCase& c) {
   const test::ContactScene scene = test::contact_scene(c.layout, c.view);
   expect_every_part_seen(c, scene);
@@ -262,19 +251,7 @@ class RobotScene : public testing::TestWithParam<test::RobotCase> {};
 TEST_P(RobotScene, MeetsTheRobotIssuesCriteria) {
   const test::RobotCase& c = GetParam();
   SCOPED_TRACE(c.name());
-  if (!not_met_yet().contains(c.name())) return check_case(c);
-  testing::TestPartResultArray failures;
-  {
-    const testing::ScopedFakeTestPartResultReporter intercept(
-        testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
-    check_case(c);
-  }
-  for (int i = 0; i < failures.size(); ++i) {
-    std::string message = failures.GetTestPartResult(i).message();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::printf("[robot] NOT MET: %s\n", message.c_str());
-  }
-  EXPECT_GT(failures.size(), 0) << "every criterion is met now: drop the case from not_met_yet()";
+  check_case(c);
 }
 
 std::string case_name(const testing::TestParamInfo<test::RobotCase>& info) {

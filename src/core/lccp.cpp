@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <tuple>
 
 #include "lccp/core/adjacency.hpp"
 #include "lccp/core/convexity.hpp"
@@ -239,18 +241,113 @@ bool rests_on(const SegmentationWork& w, std::uint32_t a, std::uint32_t b, float
 // neighbours (a box's side, seen edge on in slivers, standing on a lower box:
 // the sliver meets the upper box's front beside it). Empty without a support
 // plane or grouping.
-std::vector<std::uint8_t> resting_edges(const SegmentationWork& w, const LccpConfig& config) {
+std::vector<std::uint8_t> resting_edges(const SegmentationWork& w, const std::vector<Edge>& edges, const LccpConfig& config) {
   if (!w.support || !config.grouping.objects_from_parts) return {};
   const auto cos_upward = static_cast<float>(config.grouping.cos_upward());
   const float q = config.sensor.step_per_m2();
-  std::vector<std::uint8_t> resting(w.edges.size(), 0);
+  std::vector<std::uint8_t> resting(edges.size(), 0);
   detail::parallel_for_each_index(resting.size(), [&](std::size_t e) {
-    const Edge& edge = w.edges[e];
+    const Edge& edge = edges[e];
     resting[e] = rests_on(w, edge.a, edge.b, cos_upward, q)   ? kARestsOnB
                  : rests_on(w, edge.b, edge.a, cos_upward, q) ? kBRestsOnA
                                                               : 0;
   });
   return resting;
+}
+
+// Per segment (component id): its supervoxels, and whether it has a
+// neighbour it does not rest on.
+struct SegmentReach {
+  std::vector<std::uint32_t> size;
+  std::vector<std::uint8_t> free;
+};
+
+SegmentReach segment_reach(const SegmentationWork& w, const std::vector<std::uint8_t>& resting) {
+  const std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
+  SegmentReach r{std::vector<std::uint32_t>(segment.size(), 0), std::vector<std::uint8_t>(segment.size(), 0)};
+  for (const std::uint32_t g : segment) {
+    if (g != kNoSegment) r.size[g] += 1;
+  }
+  for (std::size_t e = 0; e < w.edges.size(); ++e) {
+    const std::uint32_t a = segment[w.edges[e].a], b = segment[w.edges[e].b];
+    if (a == b || a == kNoSegment || b == kNoSegment) continue;
+    if (!(resting[e] & kARestsOnB)) r.free[a] = 1;
+    if (!(resting[e] & kBRestsOnA)) r.free[b] = 1;
+  }
+  return r;
+}
+
+// The voxels of the small segments that rest on every neighbour they have
+// (none without `resting`), ascending in x.
+std::vector<std::uint32_t> stranded_voxels(const SegmentationWork& w, const std::vector<std::uint8_t>& resting,
+                                           std::uint32_t n_filter) {
+  if (resting.empty()) return {};
+  const SegmentReach reach = segment_reach(w, resting);
+  std::vector<std::uint32_t> stranded;
+  for (std::uint32_t v = 0; v < w.grid.size(); ++v) {
+    const std::uint32_t g = w.segment_of_supervoxel[w.supervoxels.supervoxel_of_voxel[v]];
+    if (g != kNoSegment && reach.size[g] <= n_filter && !reach.free[g]) stranded.push_back(v);
+  }
+  const auto x = [&](std::uint32_t v) { return w.grid.centroids[v].x(); };
+  std::sort(stranded.begin(), stranded.end(), [&](std::uint32_t a, std::uint32_t b) { return x(a) < x(b); });
+  return stranded;
+}
+
+// Edges for the noise filter only, beyond the 26-neighbourhood: from each
+// supervoxel of a small segment that rests on every neighbour it has, to the
+// supervoxels of other segments with a voxel centroid within two voxel sizes
+// of one of its own (those not already edges; sorted, unique). A face seen
+// nearly edge on is sampled sparser than the voxels (its points lie a pixel's
+// footprint / cos(incidence) apart: 10 mm at 1 m and 80 deg), so its slivers
+// can miss the face they continue by a cell and touch only the face they
+// stand on, which the filter would otherwise have to join.
+std::vector<Edge> gap_edges(const SegmentationWork& w, const std::vector<std::uint8_t>& resting, std::uint32_t n_filter,
+                            float voxel_m) {
+  const std::vector<std::uint32_t> stranded = stranded_voxels(w, resting, n_filter);
+  if (stranded.empty()) return {};
+  const std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
+  const std::vector<std::uint32_t>& supervoxel = w.supervoxels.supervoxel_of_voxel;
+  const float reach = 2.0f * voxel_m;
+  const auto x_below = [&](std::uint32_t v, float x) { return w.grid.centroids[v].x() < x; };
+  std::vector<Edge> gaps;
+  for (std::uint32_t u = 0; u < w.grid.size(); ++u) {
+    const Eigen::Vector3f& p = w.grid.centroids[u];
+    const std::uint32_t t = supervoxel[u];
+    if (segment[t] == kNoSegment) continue;
+    for (auto it = std::lower_bound(stranded.begin(), stranded.end(), p.x() - reach, x_below);
+         it != stranded.end() && w.grid.centroids[*it].x() <= p.x() + reach; ++it) {
+      const std::uint32_t s = supervoxel[*it];
+      if (segment[s] != segment[t] && (w.grid.centroids[*it] - p).squaredNorm() <= reach * reach) {
+        gaps.push_back(Edge{std::min(s, t), std::max(s, t)});
+      }
+    }
+  }
+  const auto before = [](const Edge& a, const Edge& b) { return std::tie(a.a, a.b) < std::tie(b.a, b.b); };
+  std::sort(gaps.begin(), gaps.end(), before);
+  std::vector<Edge> new_gaps;  // not already edges (both lists sorted, unique)
+  std::set_difference(gaps.begin(), std::unique(gaps.begin(), gaps.end()), w.edges.begin(), w.edges.end(),
+                      std::back_inserter(new_gaps), before);
+  return new_gaps;
+}
+
+// The noise filter's graph: the supervoxel adjacency, then the gap edges, and
+// what the filter ranks them by.
+struct FilterGraph {
+  std::vector<Edge> edges;
+  EdgeRanks ranks;
+};
+
+FilterGraph filter_graph(const SegmentationWork& w, const LccpConfig& config) {
+  FilterGraph g{w.edges, {{}, resting_edges(w, w.edges, config)}};
+  const std::vector<Edge> gaps =
+      gap_edges(w, g.ranks.resting, config.filter.n_filter_supervoxels, config.voxels.voxel_size_m);
+  const std::vector<std::uint8_t> resting = resting_edges(w, gaps, config);
+  g.edges.insert(g.edges.end(), gaps.begin(), gaps.end());
+  g.ranks.resting.insert(g.ranks.resting.end(), resting.begin(), resting.end());
+  if (config.filter.by_convexity) {
+    g.ranks.convexity = edge_convexity(g.edges, w.supervoxels.centroids, w.supervoxels.normals);
+  }
+  return g;
 }
 
 // Voxel v's supervoxel, then those of other segments (not the support's)
@@ -407,11 +504,8 @@ void LccpSegmenter::merge_convex(SegmentationWork& w) const {
 void LccpSegmenter::filter_small(SegmentationWork& w) const {
   const StageTimer timer(w.result.times, Stage::filter);
   settle_support(w, config_);
-  const EdgeRanks ranks{config_.filter.by_convexity
-                            ? edge_convexity(w.edges, w.supervoxels.centroids, w.supervoxels.normals)
-                            : std::vector<float>{},
-                        resting_edges(w, config_)};
-  merge_small_segments(w.segment_of_supervoxel, w.edges, config_.filter.n_filter_supervoxels, ranks);
+  const FilterGraph graph = filter_graph(w, config_);
+  merge_small_segments(w.segment_of_supervoxel, graph.edges, config_.filter.n_filter_supervoxels, graph.ranks);
   w.result.segment_count = relabel_by_size(w.segment_of_supervoxel);
   w.result.labels = label_points(w, config_.filter.boundary_points_by_plane, config_.sensor.step_per_m2());
   w.result.voxel_count = static_cast<std::uint32_t>(w.grid.size());
