@@ -159,9 +159,12 @@ struct SupportPlaneConfig {
   // wide; the plane itself where there is none) within half a depth step plus
   // three times the spread of the difference: its standard errors and the open
   // table's own flatness from cell to cell. A region that does not is a plane
-  // of its own just above the support (a pan's floor). A band point of any other supervoxel stays with it unless the support's
-  // plane fits it at least as well as its supervoxel's plane: an object keeps its
-  // foot, a neighbourhood planar with the plane goes to the plane.
+  // of its own just above the support (a pan's floor). A band point of any
+  // other supervoxel stays with it unless the support fits it at least as well
+  // as its supervoxel's plane, the support taken where it is (the plane raised
+  // by the open table's mean height in the point's cell and those around it):
+  // an object keeps its foot, a neighbourhood planar with the support goes to
+  // the support.
   bool decided_by_patches = false;
 };
 

@@ -168,13 +168,17 @@ bool on_support(const SegmentationWork& w, const BandRegion& r, float flatness_m
   return std::abs(mean - reference) <= centring_tolerance(float(r.depth / r.band.points), spread, step_per_m2);
 }
 
-// The support's supervoxels: the band regions on_support, against the open
-// table (the band points left out: on the band, skipped) in cells two seed
-// spacings wide.
-std::vector<std::uint8_t> support_patches(const SegmentationWork& w, const LccpConfig& config) {
+// The open table: the band points left out (on the band, skipped), in cells
+// two seed spacings wide.
+detail::OpenTable open_table(const SegmentationWork& w, const LccpConfig& config) {
   std::vector<std::uint8_t> left_out(w.support->on_plane.size());
   for (std::size_t i = 0; i < left_out.size(); ++i) left_out[i] = w.support->on_plane[i] && w.skip[i];
-  const detail::OpenTable open(w.cloud, left_out, w.support->plane, 2.0f * config.supervoxels.seed_size_m);
+  return detail::OpenTable(w.cloud, left_out, w.support->plane, 2.0f * config.supervoxels.seed_size_m);
+}
+
+// The support's supervoxels: the band regions on_support, against the open table.
+std::vector<std::uint8_t> support_patches(const SegmentationWork& w, const detail::OpenTable& open,
+                                          const LccpConfig& config) {
   const float flatness = open.flatness_m(), q = config.sensor.step_per_m2();
   const std::vector<BandPatch> patches = band_patches(w);
   std::vector<std::uint32_t> region_of;
@@ -191,32 +195,45 @@ float to_patch_plane(const Supervoxels& supervoxels, std::uint32_t patch, const 
   return std::abs(supervoxels.normals[patch].dot(p - supervoxels.centroids[patch]));
 }
 
+// The support's height above its plane at p: the mean height of the open
+// table's points in p's cell and those around it (the plane's, 0, where there
+// are none). A table is flat only to within OpenTable::flatness_m from cell to
+// cell, and its plane is fitted over all of it.
+float support_height_at(const detail::OpenTable& open, const Eigen::Vector3f& p) {
+  const long cell = open.cell_of(p);
+  const detail::HeightSum near = cell < 0 ? detail::HeightSum{} : open.sum_around(cell);
+  return near.points > 0 ? static_cast<float>(near.height / near.points) : 0.0f;
+}
+
 // A point on the band in a supervoxel that is not the support's: the support's
-// if the support's plane fits it at least as well as its supervoxel's plane.
-bool fits_support(const SegmentationWork& w, std::size_t i) {
+// if the support, where it is (support_height_at), fits it at least as well
+// as its supervoxel's plane.
+bool fits_support(const SegmentationWork& w, const detail::OpenTable& open, std::size_t i) {
   const std::uint32_t s = supervoxel_of_point(w, i);
   if (s == kNoVoxel) return true;  // left out: the open table
   const Eigen::Vector3f& p = w.cloud.points[i];
-  return std::abs(w.support->plane.distance(p)) <= to_patch_plane(w.supervoxels, s, p);
+  const float to_support = std::abs(w.support->plane.distance(p) - support_height_at(open, p));
+  return to_support <= to_patch_plane(w.supervoxels, s, p);
 }
 
 // decided_by_patches (SupportPlaneConfig), after the components: the
 // support's supervoxels (support_patches) are the support's (kNoSegment), and
 // so are their points within distance_m of the plane (the others are no
-// segment's: label 0); a band point elsewhere is the support's if the plane
-// fits it as well as its patch (fits_support).
+// segment's: label 0); a band point elsewhere is the support's if the support
+// where it is fits it as well as its patch (fits_support).
 void settle_support(SegmentationWork& w, const LccpConfig& config) {
   if (!w.support || !config.support.decided_by_patches) return;
   std::vector<std::uint8_t>& on_plane = w.support->on_plane;
   std::vector<std::uint32_t>& segment = w.segment_of_supervoxel;
-  const std::vector<std::uint8_t> support = support_patches(w, config);
+  const detail::OpenTable open = open_table(w, config);
+  const std::vector<std::uint8_t> support = support_patches(w, open, config);
   for (std::size_t s = 0; s < segment.size(); ++s) segment[s] = support[s] ? kNoSegment : segment[s];
   detail::parallel_for_each_index(on_plane.size(), [&](std::size_t i) {
     const std::uint32_t s = supervoxel_of_point(w, i);
     if (s != kNoVoxel && support[s]) {
       on_plane[i] = std::abs(w.support->plane.distance(w.cloud.points[i])) <= config.support.distance_m;
     } else {
-      on_plane[i] = on_plane[i] && fits_support(w, i);
+      on_plane[i] = on_plane[i] && fits_support(w, open, i);
     }
   });
   w.support->inliers = static_cast<std::uint64_t>(std::count(on_plane.begin(), on_plane.end(), 1));
@@ -241,7 +258,8 @@ bool rests_on(const SegmentationWork& w, std::uint32_t a, std::uint32_t b, float
 // neighbours (a box's side, seen edge on in slivers, standing on a lower box:
 // the sliver meets the upper box's front beside it). Empty without a support
 // plane or grouping.
-std::vector<std::uint8_t> resting_edges(const SegmentationWork& w, const std::vector<Edge>& edges, const LccpConfig& config) {
+std::vector<std::uint8_t> resting_edges(const SegmentationWork& w, const std::vector<Edge>& edges,
+                                        const LccpConfig& config) {
   if (!w.support || !config.grouping.objects_from_parts) return {};
   const auto cos_upward = static_cast<float>(config.grouping.cos_upward());
   const float q = config.sensor.step_per_m2();

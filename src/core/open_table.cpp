@@ -42,12 +42,13 @@ long OpenTable::cell_of(const Eigen::Vector3f& p) const {
 
 void OpenTable::around(long cell, std::vector<long>& out) const {
   out.clear();
-  const long row = cell / columns_, column = cell % columns_;
-  for (long r = std::max(0L, row - 1); r <= std::min(rows_ - 1, row + 1); ++r) {
-    for (long c = std::max(0L, column - 1); c <= std::min(columns_ - 1, column + 1); ++c) {
-      out.push_back(r * columns_ + c);
-    }
-  }
+  for_each_around(cell, [&](long c) { out.push_back(c); });
+}
+
+HeightSum OpenTable::sum_around(long cell) const {
+  HeightSum sum;
+  for_each_around(cell, [&](long c) { sum.add(at(c)); });
+  return sum;
 }
 
 float OpenTable::flatness_m() const {

@@ -3,6 +3,7 @@
 // points left out because no other point is near them, as a grid of cells in
 // the support's plane: the local height of the support, against which a band
 // region near the objects is compared (settle_support in lccp.cpp).
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,8 @@ class OpenTable {
   long cell_of(const Eigen::Vector3f& p) const;
   // The cell's neighbours and itself (up to 9, inside the grid), into `out`.
   void around(long cell, std::vector<long>& out) const;
+  // The open points' heights in those cells, summed.
+  HeightSum sum_around(long cell) const;
   const HeightSum& at(long cell) const { return cells_[static_cast<std::size_t>(cell)]; }
   std::size_t size() const { return cells_.size(); }
 
@@ -42,6 +45,14 @@ class OpenTable {
   float flatness_m() const;
 
  private:
+  template <typename Visit>
+  void for_each_around(long cell, Visit visit) const {
+    const long row = cell / columns_, column = cell % columns_;
+    for (long r = std::max(0L, row - 1); r <= std::min(rows_ - 1, row + 1); ++r) {
+      for (long c = std::max(0L, column - 1); c <= std::min(columns_ - 1, column + 1); ++c) visit(r * columns_ + c);
+    }
+  }
+
   static constexpr double kMinPoints = 20;
   Eigen::Vector3f e1_, e2_;
   float cell_m_ = 0;
